@@ -124,7 +124,7 @@ def intrinsic(p0, p1) -> Intrinsic:
     b = as_poses(p1, "p1")
     dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
     d = np.hypot(dx, dy)
-    scale = np.maximum.reduce([np.ones_like(d), *(np.abs(v) for v in (a[..., 0], a[..., 1], b[..., 0], b[..., 1]))])
+    scale = np.maximum(1.0, np.maximum(np.abs(a[..., :2]).max(axis=-1), np.abs(b[..., :2]).max(axis=-1)))
     if np.any(d <= 1e-12 * scale):
         raise ValueError("p0 and p1 have coincident points; the chord length d must be > 0")
     psi = np.arctan2(dy, dx)

@@ -89,6 +89,7 @@ class Union:
         for name, value in zip(
             ("p0", "p1", "alpha", "L", "d", "psi", "phi0", "phi1", "x_end", "coefficients"),
             (*ends, alpha, L, *geo, float(X), (0.0, float(c1), float(c2), float(c3))),
+            strict=True,
         ):
             object.__setattr__(self, name, value)
 
@@ -96,10 +97,7 @@ class Union:
         raise AttributeError("Union is immutable")
 
     def __repr__(self) -> str:
-        return (
-            f"Union(p0={tuple(self.p0)}, p1={tuple(self.p1)}, "
-            f"alpha={self.alpha:.6g}, L={self.L:.6g})"
-        )
+        return f"Union(p0={tuple(self.p0)}, p1={tuple(self.p1)}, alpha={self.alpha:.6g}, L={self.L:.6g})"
 
     # -- the cubic in its own frame ------------------------------------------------
     @property
