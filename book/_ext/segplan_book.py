@@ -1,0 +1,71 @@
+"""Sphinx extension of the segplan book: the built HTML must stand alone, with no network.
+
+Loaded through ``sphinx.local_extensions`` in ``book/_config.yml``. It
+
+* stops the build with a clear message when the vendored MathJax (installed by
+  ``.ci/build_book.sh`` into ``book/_vendor/mathjax``) is missing, instead of producing
+  pages whose math silently fails to render;
+* drops sphinx-thebe's scripts from every page: the book has no live-code button
+  (``launch_buttons.thebe: false``), yet jupyter-book 1.0.4 always loads sphinx-thebe, whose
+  inline ``const THEBE_JS_URL = "https://unpkg.com/..."`` is emitted twice per page and
+  throws a SyntaxError in the browser;
+* warns (an error under ``-W``) for every script or stylesheet a page would load from
+  another host (a CDN, analytics), so a theme or extension update cannot bring one in
+  unnoticed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from sphinx.application import Sphinx
+from sphinx.errors import ConfigError
+from sphinx.util import logging
+
+logger = logging.getLogger(__name__)
+
+
+def _is_remote(url: str) -> bool:
+    return "://" in url or url.startswith("//")
+
+
+def check_mathjax(app: Sphinx) -> None:
+    """The MathJax script named by ``mathjax_path`` exists in a local static path."""
+    if app.builder.format != "html":
+        return
+    path = str(app.config.mathjax_path)
+    if _is_remote(path):
+        raise ConfigError(f"mathjax_path must name a file shipped with the book (offline), got {path!r}")
+    base = Path(app.confdir or app.srcdir)
+    for static in app.config.html_static_path:
+        if (base / static / path).is_file():
+            return
+    raise ConfigError(
+        f"MathJax not found: {path!r} is in none of html_static_path {app.config.html_static_path!r} "
+        f"under {base}. Run .ci/build_book.sh, which installs the npm package mathjax into book/_vendor."
+    )
+
+
+def _is_thebe(asset) -> bool:
+    name = str(getattr(asset, "filename", "") or "")
+    body = str(getattr(asset, "attributes", {}).get("body", ""))
+    return name.endswith("sphinx-thebe.js") or "THEBE_JS_URL" in body
+
+
+def check_assets(app: Sphinx, pagename: str, templatename: str, context: dict, doctree) -> None:
+    """Drop sphinx-thebe's scripts; warn about scripts and stylesheets loaded from another host."""
+    if "script_files" in context:
+        context["script_files"][:] = [js for js in context["script_files"] if not _is_thebe(js)]
+    for kind in ("script_files", "css_files"):
+        for asset in context.get(kind, ()):
+            url = str(getattr(asset, "filename", asset) or "")
+            if _is_remote(url):
+                logger.warning(
+                    f"page {pagename!r} would load {url!r} from the network (the book must be offline)"
+                )
+
+
+def setup(app: Sphinx) -> dict:
+    app.connect("builder-inited", check_mathjax)
+    app.connect("html-page-context", check_assets, priority=900)
+    return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}

@@ -1,0 +1,101 @@
+"""segplan.plot draws what segplan computes, on the given axes, with units and equal aspect."""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import segplan  # noqa: E402
+from segplan import plot  # noqa: E402
+
+P0 = (0.0, 0.0, math.radians(30.0))
+P1 = (4.0, 1.0, math.radians(-20.0))
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    plt.close("all")
+
+
+def _lines(ax):
+    return {line.get_label(): line for line in ax.lines}
+
+
+def test_union_paths_are_the_union_samples():
+    u = segplan.Union(P0, P1, 0.3, 1.2)
+    ax = plot.plot_union(u, n=51, robots=5)
+    lines = _lines(ax)
+    np.testing.assert_array_equal(lines["rear path A"].get_xydata(), u.rear(51))
+    np.testing.assert_array_equal(lines["front-wheel path B"].get_xydata(), u.front(51))
+    assert ax.get_xlabel() == "x [m]" and ax.get_ylabel() == "y [m]"
+    assert ax.get_aspect() == 1.0
+    # three interior robot segments A->B of length L, plus the two end poses
+    segments = [line.get_xydata() for line in ax.lines if len(line.get_xydata()) == 2]
+    lengths = [np.hypot(*(s[1] - s[0])) for s in segments]
+    assert len(lengths) == 5
+    np.testing.assert_allclose(lengths, 1.2, rtol=1e-12)
+
+
+def test_union_on_given_axes_with_label():
+    fig, ax = plt.subplots()
+    u = segplan.Union(P0, P1, 0.0, 1.0)
+    assert plot.plot_union(u, ax, robots=0, ends=False, label="alpha = 0", color="C3") is ax
+    labels = [line.get_label() for line in ax.lines]
+    assert labels == ["alpha = 0", "_nolegend_"]
+    assert ax.lines[0].get_color() == ax.lines[1].get_color()
+
+
+def test_plan_obstacles_bounds():
+    u1 = segplan.Union(P0, P1, 0.3, 1.0)
+    u2 = segplan.Union(P1, (8.0, 0.0, 0.0), 0.0, 1.0)
+    ax = plot.plot_plan([u1, u2], obstacles=[[(2, 2), (3, 2), (3, 3)]], bounds=(-1, -2, 10, 4))
+    assert [line.get_label() for line in ax.lines].count("plan") == 1
+    assert len(ax.patches) == 2  # the obstacle and the bounds
+    x0, x1 = ax.get_xlim()
+    assert x0 <= -1 and x1 >= 10
+
+
+def test_longd_curve_is_formula_1():
+    alphas = np.radians(np.linspace(-30.0, 60.0, 7))
+    ax = plot.plot_longd(P0, P1, 1.0, alphas=alphas, mark_min=False, chord=False)
+    x, y = ax.lines[0].get_xdata(), ax.lines[0].get_ydata()
+    np.testing.assert_allclose(x, np.degrees(alphas))
+    np.testing.assert_allclose(y, segplan.longd_exact(P0, P1, alphas, 1.0))
+    assert ax.get_xlabel() == "alpha [deg]" and ax.get_ylabel() == "LONGD [m]"
+
+
+def test_longd_default_grid_inside_feasible_interval():
+    ax = plot.plot_longd(P0, P1, 1.0, n=21)
+    x = np.radians(ax.lines[0].get_xdata())
+    geo = segplan.pose.intrinsic(P0, P1)
+    lo, hi = segplan.pose.feasible_alpha_interval(geo.phi0, geo.phi1)
+    assert lo < x.min() and x.max() < hi and len(x) == 21
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda: plot.plot_union("not a union"), "union"),
+        (lambda: plot.plot_union(segplan.Union(P0, P1, 0.0, 1.0), robots=1), "robots"),
+        (lambda: plot.plot_union(segplan.Union(P0, P1, 0.0, 1.0), n=1), "n must"),
+        (lambda: plot.plot_plan([]), "unions"),
+        (lambda: plot.plot_polygons([[(0, 0), (1, 1)]]), "polygons\\[0\\]"),
+        (lambda: plot.plot_polygons([[(0, 0), (1, np.nan), (1, 0)]]), "finite"),
+        (lambda: plot.plot_bounds((0, 0, -1, 1)), "bounds"),
+        (lambda: plot.plot_pose(P0, 0.0), "L"),
+        (lambda: plot.plot_longd(P0, P1, 1.0, margin=0.6), "margin"),
+        (lambda: plot.plot_longd(P0, (-4.0, 0.0, 0.0), 1.0), "no alpha"),
+        (lambda: plot.plot_union(segplan.Union(P0, P1, 0.0, 1.0), ax="axes"), "ax"),
+    ],
+)
+def test_bad_input_raises_value_error(call, match):
+    with pytest.raises(ValueError, match=match):
+        call()
