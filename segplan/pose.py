@@ -54,8 +54,9 @@ class Intrinsic(NamedTuple):
 
 def wrap(angle):
     """Wrap angles to ``(-pi, pi]`` (scalars or arrays)."""
-    a = np.mod(np.asarray(angle, dtype=float) + math.pi, 2.0 * math.pi) - math.pi
-    a = np.where(a <= -math.pi, a + 2.0 * math.pi, a)
+    a = np.asarray(angle, dtype=float)
+    a = a - (2.0 * math.pi) * np.round(a / (2.0 * math.pi))  # in [-pi, pi] up to rounding
+    a = np.where(a <= -math.pi, a + 2.0 * math.pi, np.where(a > math.pi, a - 2.0 * math.pi, a))
     return float(a) if np.ndim(a) == 0 else a
 
 
@@ -124,7 +125,12 @@ def intrinsic(p0, p1) -> Intrinsic:
     b = as_poses(p1, "p1")
     dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
     d = np.hypot(dx, dy)
-    scale = np.maximum(1.0, np.maximum(np.abs(a[..., :2]).max(axis=-1), np.abs(b[..., :2]).max(axis=-1)))
+    scale = np.maximum(
+        np.maximum(
+            np.maximum(np.abs(a[..., 0]), np.abs(a[..., 1])), np.maximum(np.abs(b[..., 0]), np.abs(b[..., 1]))
+        ),
+        1.0,
+    )
     if np.any(d <= 1e-12 * scale):
         raise ValueError("p0 and p1 have coincident points; the chord length d must be > 0")
     psi = np.arctan2(dy, dx)

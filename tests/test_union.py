@@ -126,3 +126,14 @@ def test_xs_validates_n():
     for bad in (1, 0, 2.5, -3):
         with pytest.raises(ValueError, match="n must be"):
             u.rear(bad)
+
+
+@given(st.floats(-1e4, 1e4))
+def test_wrap_lands_in_half_open_interval_and_keeps_the_angle(a):
+    w = wrap(a)
+    assert -math.pi < w <= math.pi
+    assert abs(math.sin(w) - math.sin(a)) < 1e-9 and abs(math.cos(w) - math.cos(a)) < 1e-9
+
+
+def test_wrap_of_pi_is_pi():
+    assert wrap(math.pi) == math.pi and wrap(-math.pi) == math.pi
