@@ -12,8 +12,11 @@ that broadcast against each other.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from .calibration import S2_CAP, calibration, exact_values, in_domain
 from .pose import alpha_interval, check_length, intrinsic
 from .romberg import romberg
 from .union import chord_slopes, cubic_coefficients
@@ -156,3 +159,209 @@ def approx_terms(d, phi0, phi1, alpha, L):
     rear_excess = c * c * q1 / 15.0
     front_excess = 2.0 * L * L / (d * c) * (1.0 / (c * c) + 2.0 * q1 / 15.0) ** -2.5 * q2
     return rear_excess, front_excess
+
+
+def longd_approx_intrinsic(d, phi0, phi1, alpha, L, k=None):
+    """Formula [2] in intrinsic parameters (vectorised, no validation).
+
+    ::
+
+        LONGD ~ d [1 + k_alpha cos^2(alpha) Q1 / 15]
+                + 2 L^2 / (d cos alpha) [1 / cos^2(alpha) + 2 Q1 / 15]^(-5/2) Q2      [2]
+
+    with ``mbar_i = tan(phi_i + alpha) - tan(alpha)``, ``Q1 = mbar0^2 + mbar1^2 -
+    mbar0 mbar1 / 2`` and ``Q2 = mbar0^2 + mbar1^2 + mbar0 mbar1`` (see
+    :func:`approx_terms` and :mod:`segplan.derivation`).
+
+    Parameters
+    ----------
+    d, phi0, phi1, alpha, L : float or ndarray
+        Chord length, intrinsic headings and reference-system angle (radians), robot
+        length; broadcast against each other. The caller guarantees validity
+        (:func:`checked_intrinsic`).
+    k : float or ndarray, optional
+        ``k_alpha``; by default the fitted one (:func:`segplan.calibration.k_alpha`).
+
+    Returns
+    -------
+    float or ndarray
+    """
+    if k is None:
+        c0, c1 = calibration().k_coef
+    if np.ndim(d) == np.ndim(phi0) == np.ndim(phi1) == np.ndim(alpha) == np.ndim(L) == np.ndim(k) == 0:
+        d, phi0, phi1, alpha, L = float(d), float(phi0), float(phi1), float(alpha), float(L)
+        kk = c0 + c1 * min(math.sin(alpha) ** 2, S2_CAP) if k is None else float(k)
+        return _approx_scalar(d, phi0, phi1, alpha, L, kk)
+    if k is None:
+        d, phi0, phi1, alpha, L = np.broadcast_arrays(d, phi0, phi1, alpha, L)
+    else:
+        d, phi0, phi1, alpha, L, k = np.broadcast_arrays(d, phi0, phi1, alpha, L, k)
+    t = np.tan(alpha)
+    m0 = np.tan(np.add(phi0, alpha))
+    m0 -= t  # mbar0 = tan(phi0 + alpha) - tan(alpha)
+    m1 = np.tan(np.add(phi1, alpha))
+    m1 -= t  # mbar1
+    q2 = m0 * m1  # mbar0 mbar1
+    q1 = m0 * m0
+    q1 += m1 * m1
+    q1 -= 0.5 * q2  # Q1 = mbar0^2 + mbar1^2 - mbar0 mbar1 / 2
+    q2 *= 1.5
+    q2 += q1  # Q2 = Q1 + (3/2) mbar0 mbar1
+    sec2 = t * t
+    sec2 += 1.0  # 1 / cos^2(alpha)
+    if k is None:
+        kk = t * t
+        kk /= sec2  # sin^2(alpha)
+        np.minimum(kk, S2_CAP, out=kk)
+        kk *= c1
+        kk += c0  # k_alpha = c0 + c1 min(sin^2(alpha), S2_CAP)
+    else:
+        kk = k.astype(float)
+    rear = kk * q1
+    rear /= sec2
+    rear *= 1.0 / 15.0
+    rear += 1.0
+    rear *= d  # d [1 + k_alpha cos^2(alpha) Q1 / 15]
+    a = q1 * (2.0 / 15.0)
+    a += sec2  # A = 1 / cos^2(alpha) + 2 Q1 / 15
+    front = np.sqrt(a)
+    front *= a
+    front *= a  # A^(5/2)
+    front = q2 / front  # Q2 A^(-5/2)
+    front *= np.sqrt(sec2)
+    front *= L * L
+    front /= d
+    front *= 2.0  # 2 L^2 / (d cos alpha) A^(-5/2) Q2
+    rear += front
+    return rear
+
+
+def _approx_scalar(d: float, phi0: float, phi1: float, alpha: float, L: float, k: float) -> float:
+    """Formula [2] for one case with the ``math`` module (same arithmetic as the array path)."""
+    t = math.tan(alpha)
+    m0 = math.tan(phi0 + alpha) - t  # mbar0
+    m1 = math.tan(phi1 + alpha) - t  # mbar1
+    q1 = m0 * m0 + m1 * m1 - 0.5 * m0 * m1  # Q1
+    q2 = q1 + 1.5 * m0 * m1  # Q2
+    sec2 = 1.0 + t * t  # 1 / cos^2(alpha)
+    rear = d * (1.0 + k * q1 / sec2 / 15.0)  # d [1 + k_alpha cos^2(alpha) Q1 / 15]
+    a = sec2 + q1 * (2.0 / 15.0)  # A = 1 / cos^2(alpha) + 2 Q1 / 15
+    return rear + 2.0 * L * L * math.sqrt(sec2) / d * q2 / (
+        a * a * math.sqrt(a)
+    )  # + 2 L^2 / (d cos a) A^-5/2 Q2
+
+
+def longd_approx(p0, p1, alpha, L):
+    """LONGD by the closed approximation [2] (vectorised).
+
+    Section "Approximate computation of cost function". Valid (|relative error| under
+    2.5 %) only inside the domain of :func:`segplan.calibration.in_domain`; use
+    :func:`longd` to fall back on formula [1] outside it.
+
+    Parameters
+    ----------
+    p0, p1 : (x, y, theta) or arrays of shape (..., 3)
+        Start and end nodes.
+    alpha : float or ndarray
+        Reference-system angle (radians), inside the interval where the cubic exists.
+    L : float or ndarray
+        Robot length (> 0).
+
+    Returns
+    -------
+    float or ndarray
+
+    Raises
+    ------
+    ValueError
+        Invalid input (see :func:`checked_intrinsic`).
+    """
+    shape = _block_shape(p0, p1, alpha, L)
+    size = math.prod(shape) if shape is not None else 0
+    if size <= 2 * BLOCK:
+        return longd_approx_intrinsic(*checked_intrinsic(p0, p1, alpha, L))
+    # Cache blocking: validate and evaluate BLOCK cases at a time (about 2x faster on
+    # large arrays: the temporaries stay in cache).
+    a, b = np.broadcast_to(p0, (*shape, 3)).reshape(-1, 3), np.broadcast_to(p1, (*shape, 3)).reshape(-1, 3)
+    al = np.broadcast_to(np.asarray(alpha, dtype=float), shape).reshape(-1)
+    ll = np.broadcast_to(np.asarray(L, dtype=float), shape).reshape(-1)
+    out = np.empty(size)
+    try:
+        for i in range(0, size, BLOCK):
+            j = i + BLOCK
+            out[i:j] = longd_approx_intrinsic(*checked_intrinsic(a[i:j], b[i:j], al[i:j], ll[i:j]))
+    except ValueError:
+        checked_intrinsic(p0, p1, alpha, L)  # raises with the message for the whole input
+        raise
+    return out.reshape(shape)
+
+
+#: Cases per block in :func:`longd_approx` on large inputs.
+BLOCK = 16384
+
+
+def _block_shape(p0, p1, alpha, L):
+    """Broadcast shape of well-formed numeric array inputs, else None (unblocked path)."""
+    if not all(isinstance(v, np.ndarray) and v.dtype.kind == "f" for v in (p0, p1)):
+        return None
+    if p0.ndim == 0 or p1.ndim == 0 or p0.shape[-1] != 3 or p1.shape[-1] != 3:
+        return None
+    try:
+        alpha, L = np.asarray(alpha, dtype=float), np.asarray(L, dtype=float)
+        return np.broadcast_shapes(p0.shape[:-1], p1.shape[:-1], alpha.shape, L.shape)
+    except (TypeError, ValueError):
+        return None
+
+
+def longd_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10):
+    """The planner's LONGD in intrinsic parameters: [2] inside the domain, [1] outside.
+
+    The caller guarantees valid inputs (see :func:`checked_intrinsic`).
+    """
+    if np.ndim(d) == np.ndim(phi0) == np.ndim(phi1) == np.ndim(alpha) == np.ndim(L) == 0:
+        d, phi0, phi1, alpha, L = float(d), float(phi0), float(phi1), float(alpha), float(L)
+        if in_domain(d, phi0, phi1, alpha, L):
+            return longd_approx_intrinsic(d, phi0, phi1, alpha, L)
+        return longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=rtol)
+    d, phi0, phi1, alpha, L = np.broadcast_arrays(d, phi0, phi1, alpha, L)
+    inside = in_domain(d, phi0, phi1, alpha, L)
+    out = np.empty(d.shape)
+    if np.any(inside):
+        out[inside] = longd_approx_intrinsic(d[inside], phi0[inside], phi1[inside], alpha[inside], L[inside])
+    outside = ~inside
+    if np.any(outside):
+        out[outside] = exact_values(
+            d[outside], phi0[outside], phi1[outside], alpha[outside], L[outside], rtol=rtol
+        )
+    return out
+
+
+def longd(p0, p1, alpha, L, rtol=1e-10):
+    """LONGD as the planner computes it: [2] inside its validated domain, [1] outside.
+
+    Section "Approximate computation of cost function": "Out of the evaluated range for
+    formula [2], the Romberg algorithm is used." The domain (bands of ``d / L``, ranges
+    of ``|alpha|`` and of the intrinsic headings ``|phi_i|``) and ``k_alpha`` are fitted by
+    :func:`segplan.calibration.calibration`.
+
+    Parameters
+    ----------
+    p0, p1 : (x, y, theta) or arrays of shape (..., 3)
+        Start and end nodes.
+    alpha : float or ndarray
+        Reference-system angle (radians), inside the interval where the cubic exists.
+    L : float or ndarray
+        Robot length (> 0).
+    rtol : float
+        Romberg tolerance outside the domain.
+
+    Returns
+    -------
+    float or ndarray
+
+    Raises
+    ------
+    ValueError
+        Invalid input (see :func:`checked_intrinsic`).
+    """
+    return longd_intrinsic(*checked_intrinsic(p0, p1, alpha, L), rtol=rtol)

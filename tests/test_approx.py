@@ -1,0 +1,302 @@
+"""LONGD: [1] against independent oracles, [2] inside its validated domain, the dispatch."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from scipy.integrate import quad
+
+import segplan
+from segplan import calibration as cal
+from segplan.cost import BLOCK, longd_approx_intrinsic, longd_exact_intrinsic, longd_intrinsic
+
+DEG = math.pi / 180
+
+
+# -- helpers ---------------------------------------------------------------------------
+def world_pair(x0, y0, beta, d, phi0, phi1):
+    """Poses with chord length d at world angle beta and intrinsic headings phi0, phi1."""
+    p0 = (x0, y0, beta + phi0)
+    p1 = (x0 + d * math.cos(beta), y0 + d * math.sin(beta), beta + phi1)
+    return p0, p1
+
+
+@st.composite
+def cases(draw, phi_max_deg=80.0, frame_cap_deg=85.0):
+    """A valid case: poses in the world, alpha inside the feasible interval, L."""
+    phi0 = draw(st.floats(-phi_max_deg, phi_max_deg)) * DEG
+    phi1 = draw(st.floats(-phi_max_deg, phi_max_deg)) * DEG
+    cap = frame_cap_deg * DEG
+    lo = max(-math.pi / 2, -cap - min(phi0, phi1, 0.0))
+    hi = min(math.pi / 2, cap - max(phi0, phi1, 0.0))
+    assume(hi - lo > 0.02)
+    alpha = lo + (hi - lo) * draw(st.floats(0.01, 0.99))
+    d = draw(st.floats(0.2, 50.0))
+    L = draw(st.floats(0.1, 5.0))
+    x0, y0 = draw(st.floats(-100, 100)), draw(st.floats(-100, 100))
+    beta = draw(st.floats(-math.pi, math.pi))
+    p0, p1 = world_pair(x0, y0, beta, d, phi0, phi1)
+    return p0, p1, alpha, L
+
+
+def rigid(p, angle, tx, ty):
+    c, s = math.cos(angle), math.sin(angle)
+    return (c * p[0] - s * p[1] + tx, s * p[0] + c * p[1] + ty, p[2] + angle)
+
+
+# -- formula [1] against independent oracles ---------------------------------------------
+@settings(max_examples=60)
+@given(cases())
+def test_longd_exact_agrees_with_quad(case):
+    p0, p1, alpha, L = case
+    rtol = 1e-8
+    u = segplan.Union(p0, p1, alpha, L)
+
+    def integrand(x):  # [1] from the union's own derivatives
+        fp, fpp = u.slope(x), u.second_derivative(x)
+        w = 1.0 + fp * fp
+        return math.sqrt(w + (L * fpp / w) ** 2)
+
+    ref, ref_err = quad(integrand, 0.0, u.x_end, epsabs=0.0, epsrel=1e-13, limit=500)
+    got = segplan.longd_exact(p0, p1, alpha, L, rtol=rtol)
+    assert abs(got - ref) <= rtol * ref + ref_err
+
+
+def test_longd_exact_is_the_front_wheel_path_length():
+    for p0, p1, alpha, L in [
+        ((0, 0, 0.3), (5, 1, -0.2), 0.1, 1.0),
+        ((1, 2, 1.2), (-3, 6, 2.9), -0.2, 2.5),
+        ((0, 0, 0.9), (2, 0, 0.9), -0.7, 0.5),
+    ]:
+        front = segplan.Union(p0, p1, alpha, L).front(200_001)
+        polyline = np.sum(np.hypot(*np.diff(front, axis=0).T))
+        assert segplan.longd_exact(p0, p1, alpha, L) == pytest.approx(polyline, rel=1e-8)
+
+
+# -- formula [2] inside its validated domain -------------------------------------------
+def test_calibration_is_deterministic_and_meets_its_bounds():
+    c = cal.calibration()
+    again = cal.run_calibration()
+    assert again == c
+    assert c.max_error <= cal.DESIGN_MAX < cal.BOUND_MAX
+    assert c.mean_error <= cal.BOUND_MEAN
+    a = np.linspace(0.0, math.pi / 2, 1001, endpoint=False)
+    k = cal.k_alpha(a)
+    assert np.all((0.0 < k) & (k < 1.0))  # the paper: 0 < k_alpha < 1
+    dom = c.domain
+    assert any(p > 0 for p in dom.phi_max)
+    for a_max, p_max in zip(dom.alpha_max, dom.phi_max, strict=True):
+        assert a_max + p_max <= cal.FRAME_CAP_DEG * DEG + 1e-12
+    assert list(dom.band_lower) == sorted(dom.band_lower)
+
+
+def test_error_inside_the_domain_on_a_large_random_sample():
+    df = cal.error_study(*cal.sample_domain(60_000, seed=2024))  # not the calibration grid
+    assert df["in_domain"].all()
+    assert df["abs_error"].max() < cal.BOUND_MAX
+    assert df["abs_error"].mean() < cal.BOUND_MEAN
+
+
+def test_error_at_the_corners_of_every_box():
+    dom = cal.calibration().domain
+    upper = (*dom.band_lower[1:], 1e4)
+    rows = []
+    for lo, hi, a_max, p_max in zip(dom.band_lower, upper, dom.alpha_max, dom.phi_max, strict=True):
+        if p_max <= 0:
+            continue
+        for dl in (lo, math.sqrt(lo * hi), hi * (1 - 1e-9)):
+            for sa in (-1.0, 0.0, 1.0):
+                for s0 in (-1.0, 0.0, 1.0):
+                    for s1 in (-1.0, 0.0, 1.0):
+                        rows.append((dl, s0 * p_max, s1 * p_max, sa * a_max))
+    dl, phi0, phi1, alpha = np.array(rows).T
+    df = cal.error_study(dl, phi0, phi1, alpha)
+    assert df["in_domain"].all()
+    assert df["abs_error"].max() < cal.BOUND_MAX
+
+
+@settings(max_examples=80)
+@given(st.integers(0, 2**31 - 1), st.floats(0.1, 5.0), st.floats(-math.pi, math.pi))
+def test_public_longd_approx_inside_the_domain(seed, L, beta):
+    dl, phi0, phi1, alpha = (float(v[0]) for v in cal.sample_domain(1, seed=seed))
+    p0, p1 = world_pair(3.0, -7.0, beta, dl * L, phi0, phi1)
+    exact = segplan.longd_exact(p0, p1, alpha, L)
+    approx = segplan.longd_approx(p0, p1, alpha, L)
+    assert abs(approx / exact - 1.0) < cal.BOUND_MAX
+    assert segplan.longd(p0, p1, alpha, L) == approx
+
+
+def test_in_domain_scalar_and_vector_paths_agree():
+    rng = np.random.default_rng(5)
+    n = 5000
+    d = np.exp(rng.uniform(-1, 4, n))
+    L = rng.uniform(0.2, 2, n)
+    phi0, phi1, alpha = (rng.uniform(-1, 1, n) for _ in range(3))
+    vec = cal.in_domain(d, phi0, phi1, alpha, L)
+    sca = [
+        cal.in_domain(float(d[i]), float(phi0[i]), float(phi1[i]), float(alpha[i]), float(L[i]))
+        for i in range(n)
+    ]
+    assert vec.dtype == bool and vec.shape == (n,)
+    assert np.array_equal(vec, np.array(sca))
+    assert 0 < vec.mean() < 1
+    assert isinstance(cal.in_domain(4.0, 0.1, 0.1, 0.1, 1.0), bool)
+
+
+# -- the dispatch longd ----------------------------------------------------------------
+@settings(max_examples=60)
+@given(cases(phi_max_deg=75.0, frame_cap_deg=80.0))
+def test_longd_is_exact_outside_the_domain(case):
+    p0, p1, alpha, L = case
+    d, phi0, phi1 = (segplan.cost.checked_intrinsic(p0, p1, alpha, L)[i] for i in range(3))
+    assume(not cal.in_domain(float(d), float(phi0), float(phi1), alpha, L))
+    assert segplan.longd(p0, p1, alpha, L) == segplan.longd_exact(p0, p1, alpha, L)
+
+
+def test_longd_vectorised_mixes_both_paths():
+    wide = cal.sample_wide(3000, seed=11, frame_cap_deg=75.0)
+    dom = cal.sample_domain(1000, seed=12)
+    dl, phi0, phi1, alpha = (np.concatenate(pair) for pair in zip(wide, dom, strict=True))
+    L = 0.7
+    rng = np.random.default_rng(3)
+    beta = rng.uniform(-math.pi, math.pi, dl.size)
+    p0 = np.stack((np.zeros_like(dl), np.ones_like(dl), beta + phi0), axis=-1)
+    p1 = np.stack((dl * L * np.cos(beta), 1.0 + dl * L * np.sin(beta), beta + phi1), axis=-1)
+    got = segplan.longd(p0, p1, alpha, L)
+    inside = cal.in_domain(dl * L, phi0, phi1, alpha, L)
+    assert 0.1 < inside.mean() < 0.9
+    np.testing.assert_array_equal(got[inside], segplan.longd_approx(p0[inside], p1[inside], alpha[inside], L))
+    out = np.flatnonzero(~inside)[::20]
+    single = [segplan.longd_exact(p0[i], p1[i], alpha[i], L) for i in out]
+    np.testing.assert_allclose(got[out], single, rtol=1e-9)
+    assert isinstance(segplan.longd(p0[0], p1[0], alpha[0], L), float)
+
+
+# -- invariance, vectorisation -----------------------------------------------------------
+@settings(max_examples=60)
+@given(cases(), st.floats(-math.pi, math.pi), st.floats(-1e3, 1e3), st.floats(-1e3, 1e3))
+def test_longd_invariant_under_rigid_motions(case, angle, tx, ty):
+    p0, p1, alpha, L = case
+    q0, q1 = rigid(p0, angle, tx, ty), rigid(p1, angle, tx, ty)
+    for fn in (segplan.longd_exact, segplan.longd_approx):
+        assert fn(q0, q1, alpha, L) == pytest.approx(fn(p0, p1, alpha, L), rel=1e-9)
+    d0 = segplan.cost.checked_intrinsic(p0, p1, alpha, L)
+    d1 = segplan.cost.checked_intrinsic(q0, q1, alpha, L)
+    assume(cal.in_domain(*map(float, d0)) == cal.in_domain(*map(float, d1)))
+    assert segplan.longd(q0, q1, alpha, L) == pytest.approx(segplan.longd(p0, p1, alpha, L), rel=1e-9)
+
+
+def test_vectorised_longd_approx_matches_single_calls_and_keeps_shapes():
+    rng = np.random.default_rng(1)
+    n = 2 * BLOCK + 1000  # also exercises the blocked path
+    dl, phi0, phi1, alpha = cal.sample_wide(n, seed=4, frame_cap_deg=80.0)
+    L = rng.uniform(0.3, 2.0, n)
+    p0 = np.stack((np.zeros(n), np.zeros(n), phi0), axis=-1)
+    p1 = np.stack((dl * L, np.zeros(n), phi1), axis=-1)
+    got = segplan.longd_approx(p0, p1, alpha, L)
+    np.testing.assert_allclose(got, longd_approx_intrinsic(dl * L, phi0, phi1, alpha, L), rtol=1e-13)
+    for i in range(0, n, 2503):
+        assert segplan.longd_approx(
+            tuple(p0[i]), tuple(p1[i]), float(alpha[i]), float(L[i])
+        ) == pytest.approx(got[i], rel=1e-13)
+    # shapes: one start against a (2, m) grid of ends, alpha broadcast along the last axis
+    m = 5
+    ends = p1[: 2 * m].reshape(2, m, 3)
+    a = np.full(m, 0.05)
+    out = segplan.longd_approx((0.0, 0.0, 0.0), ends, a, 1.0)
+    assert out.shape == (2, m)
+    assert segplan.longd((0.0, 0.0, 0.0), ends, a, 1.0).shape == (2, m)
+
+
+def test_intrinsic_layer_is_vectorised_and_scalar():
+    d, phi0, phi1, alpha, L = 4.0, 0.2, -0.1, 0.05, 1.0
+    s = longd_intrinsic(d, phi0, phi1, alpha, L)
+    assert isinstance(s, float)
+    v = longd_intrinsic(np.full(3, d), phi0, phi1, np.array([alpha, 1.0, -1.0]), L)
+    assert v.shape == (3,) and v[0] == s
+    assert v[1] == pytest.approx(longd_exact_intrinsic(d, phi0, phi1, 1.0, L), rel=1e-10)
+
+
+# -- bad input -----------------------------------------------------------------------------
+BAD = [
+    ((0, 0, 0), (0, 0, 0.5), 0.0, 1.0, "coincident"),
+    ((0, 0, math.nan), (1, 0, 0), 0.0, 1.0, "finite"),
+    ((0, 0, 0), (1, math.inf, 0), 0.0, 1.0, "finite"),
+    ((0, 0, 0), (1, 0, 0), math.nan, 1.0, "alpha"),
+    ((0, 0, 0), (1, 0, 0), math.inf, 1.0, "alpha"),
+    ((0, 0, 0), (1, 0, 0), 0.0, 0.0, "L"),
+    ((0, 0, 0), (1, 0, 0), 0.0, -2.0, "L"),
+    ((0, 0, 0), (1, 0, 0), 0.0, math.nan, "L"),
+    ((0, 0, 0), (1, 0, 0), 1.6, 1.0, "alpha"),
+    ((0, 0, -0.4), (1, 0, 0), -1.2, 1.0, "alpha"),
+    ((0, 0, math.pi), (1, 0, math.pi), 0.0, 1.0, "alpha"),  # goal behind the start
+    ((0, 0), (1, 0, 0), 0.0, 1.0, "p0"),
+    ((0, 0, 0), "abc", 0.0, 1.0, "p1"),
+]
+
+
+@pytest.mark.parametrize("fn", [segplan.longd_approx, segplan.longd])
+@pytest.mark.parametrize(("p0", "p1", "alpha", "L", "word"), BAD)
+def test_bad_input_raises_value_error(fn, p0, p1, alpha, L, word):
+    with pytest.raises(ValueError, match=word):
+        fn(p0, p1, alpha, L)
+
+
+@pytest.mark.parametrize("fn", [segplan.longd_approx, segplan.longd])
+@pytest.mark.parametrize("n", [10, 2 * BLOCK + 7])
+def test_bad_entry_in_arrays_raises_value_error(fn, n):
+    p0 = np.zeros((n, 3))
+    p1 = np.tile([2.0, 0.0, 0.1], (n, 1))
+    alpha = np.full(n, 0.1)
+    bad_alpha = alpha.copy()
+    bad_alpha[n - 3] = 2.0
+    with pytest.raises(ValueError, match=f"flat index {n - 3}"):
+        fn(p0, p1, bad_alpha, 1.0)
+    bad_p1 = p1.copy()
+    bad_p1[n // 2, 1] = math.nan
+    with pytest.raises(ValueError, match="finite"):
+        fn(p0, bad_p1, alpha, 1.0)
+    bad_p1 = p1.copy()
+    bad_p1[1, :2] = 0.0
+    with pytest.raises(ValueError, match="coincident"):
+        fn(p0, bad_p1, alpha, 1.0)
+    with pytest.raises(ValueError, match="L"):
+        fn(p0, p1, alpha, np.where(np.arange(n) == 4, -1.0, 1.0))
+    assert np.all(np.isfinite(fn(p0, p1, alpha, 1.0)))
+
+
+# -- the studies the book uses ---------------------------------------------------------------
+def test_study_tables():
+    df = cal.error_study(*cal.sample_wide(500, seed=1))
+    assert list(df.columns) == [
+        "d_over_L",
+        "alpha_deg",
+        "phi0_deg",
+        "phi1_deg",
+        "mbar0",
+        "mbar1",
+        "exact",
+        "approx",
+        "rel_error",
+        "abs_error",
+        "in_domain",
+    ]
+    assert len(df) == 500 and np.all(np.isfinite(df[["exact", "approx"]].to_numpy()))
+    kb = cal.k_by_alpha()
+    assert np.all(np.abs(kb["k_bin"] - kb["k_alpha"]) < 0.1)
+    comp = cal.k_basis_comparison().set_index("form")
+    assert comp.loc["c0 + c1 sin^2(alpha) (used)", "rms_error"] <= 1.01 * comp["rms_error"].min()
+    assert comp.loc["constant", "rms_error"] > comp.loc["c0 + c1 sin^2(alpha) (used)", "rms_error"]
+    assert len(cal.calibration().domain.table()) == len(cal.BAND_LOWER)
+
+
+def test_variant_comparison_picks_the_derived_terms():
+    v = cal.variant_comparison(n_wide=2000).set_index("variant")
+    derived = v.loc["exact|cross=-1/2|exp=-5/2"]
+    assert derived["max_domain"] < cal.BOUND_MAX
+    # the OCR's Simpson first term is clearly worse, and so are the exponents -3/2 and -2
+    assert v.loc["simpson|cross=-1/2|exp=-5/2", "mean_domain"] > 2 * derived["mean_domain"]
+    assert v.loc["exact|cross=-1/2|exp=-3/2", "max_domain"] > 2 * derived["max_domain"]
+    assert v.loc["exact|cross=-1/2|exp=-2", "max_domain"] > derived["max_domain"]

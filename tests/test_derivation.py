@@ -1,0 +1,99 @@
+"""The sympy derivation of formula [2] and its agreement with the library's closed form."""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from segplan import derivation as dv
+from segplan.calibration import k_alpha
+from segplan.cost import approx_terms, longd_approx_intrinsic
+from segplan.union import chord_slopes
+
+
+def test_every_step_is_proved():
+    steps = dv.derivation_steps()
+    assert len(steps) >= 15
+    failed = [s.title for s in steps if not s.holds]
+    assert not failed, failed
+
+
+def test_bump_integrals_by_direct_quadrature():
+    # independent of sympy: the Hermite integrals by numpy on a fine grid (Simpson, exact
+    # up to rounding for these polynomials)
+    rng = np.random.default_rng(0)
+    m0, m1 = rng.normal(size=2)
+    s = np.linspace(0.0, 1.0, 2001)
+    gp = m0 * (3 * s**2 - 4 * s + 1) + m1 * (3 * s**2 - 2 * s)
+    gpp = m0 * (6 * s - 4) + m1 * (6 * s - 2)
+    w = np.full(s.size, 2.0)
+    w[1::2], w[0], w[-1] = 4.0, 1.0, 1.0
+    w /= 3.0 * (s.size - 1)
+    assert w @ gp**2 == pytest.approx(2 / 15 * (m0**2 + m1**2 - m0 * m1 / 2), rel=1e-12)
+    assert w @ gpp**2 == pytest.approx(4 * (m0**2 + m1**2 + m0 * m1), rel=1e-12)
+
+
+def test_simpson_reproduces_the_ocr_constants_and_nothing_else_does():
+    readings = dv.rear_quadrature_readings()
+    ocr = sp.Rational(5, 24) * (dv.mbar0**2 + dv.mbar1**2 + sp.Rational(2, 5) * dv.mbar0 * dv.mbar1)
+    hits = [name for name, expr in readings.items() if sp.simplify(expr - ocr) == 0]
+    assert hits == ["simpson"]
+    # Boole's rule is exact for the quartic g'^2; Simpson is not
+    assert sp.simplify(readings["boole"] - readings["exact"]) == 0
+
+
+def test_variants_cover_the_ocr_alternatives():
+    v = dv.variants()
+    assert len(v) == 18
+    assert dv.DERIVED_VARIANT in v
+    assert sp.simplify(v[dv.DERIVED_VARIANT] - dv.formula2()) == 0
+    for rear in ("exact", "simpson", "second_order"):
+        for cross in ("-1/2", "1/2"):
+            for exponent in ("-3/2", "-2", "-5/2"):
+                assert f"{rear}|cross={cross}|exp={exponent}" in v
+    with pytest.raises(ValueError, match="rule"):
+        dv.rear_term("trapezoid")
+
+
+def _random_cases(n, seed):
+    rng = np.random.default_rng(seed)
+    d = rng.uniform(0.5, 30.0, n)
+    L = rng.uniform(0.2, 3.0, n)
+    phi0 = rng.uniform(-1.3, 1.3, n)
+    phi1 = rng.uniform(-1.3, 1.3, n)
+    lo = -np.pi / 2 - np.minimum(np.minimum(phi0, phi1), 0.0)
+    hi = np.pi / 2 - np.maximum(np.maximum(phi0, phi1), 0.0)
+    keep = hi - lo > 0.05
+    alpha = lo + (hi - lo) * rng.uniform(0.02, 0.98, n)
+    return d[keep], phi0[keep], phi1[keep], alpha[keep], L[keep]
+
+
+def test_longd_approx_equals_the_sympy_expression():
+    d, phi0, phi1, alpha, L = _random_cases(4000, seed=7)
+    f = dv.lambdified()
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    expected = f(d, alpha, m0, m1, L, k_alpha(alpha))
+    got = longd_approx_intrinsic(d, phi0, phi1, alpha, L)
+    np.testing.assert_allclose(got, expected, rtol=1e-12)
+    # and the scalar path (math module) agrees too
+    for i in range(0, d.size, 97):
+        assert longd_approx_intrinsic(d[i], phi0[i], phi1[i], alpha[i], L[i]) == pytest.approx(
+            expected[i], rel=1e-12
+        )
+
+
+def test_approx_terms_are_the_two_terms_of_the_sympy_expression():
+    d, phi0, phi1, alpha, L = _random_cases(2000, seed=8)
+    f = dv.lambdified()
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    rear, front = approx_terms(d, phi0, phi1, alpha, L)
+    np.testing.assert_allclose(d + front, f(d, alpha, m0, m1, L, 0.0), rtol=1e-12)
+    np.testing.assert_allclose(d * rear, f(d, alpha, m0, m1, L, 1.0) - f(d, alpha, m0, m1, L, 0.0), rtol=1e-9)
+
+
+def test_explicit_k_is_used():
+    d, phi0, phi1, alpha, L = _random_cases(500, seed=9)
+    f = dv.lambdified()
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    np.testing.assert_allclose(
+        longd_approx_intrinsic(d, phi0, phi1, alpha, L, k=0.5), f(d, alpha, m0, m1, L, 0.5), rtol=1e-12
+    )
