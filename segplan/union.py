@@ -93,6 +93,42 @@ class Union:
         ):
             object.__setattr__(self, name, value)
 
+    @classmethod
+    def from_intrinsic(
+        cls, p0: Pose, p1: Pose, alpha: float, L: float, d: float, psi: float, phi0: float, phi1: float
+    ) -> Union:
+        """Build a union from parameters the caller has already validated (no checks).
+
+        A fast path for the planner, which builds thousands of unions and has computed
+        the intrinsic parameters (``segplan.pose.intrinsic(p0, p1)``) and checked
+        ``alpha`` and ``L`` itself. Equal to ``Union(p0, p1, alpha, L)`` up to rounding
+        (scalar ``math`` instead of numpy). Added for issue 3 (search speed).
+        """
+        t = math.tan(alpha)
+        m0 = math.tan(phi0 + alpha) - t  # mbar0
+        m1 = math.tan(phi1 + alpha) - t  # mbar1
+        X = d * math.cos(alpha)
+        coefficients = (0.0, t + m0, -(2.0 * m0 + m1) / X, (m0 + m1) / (X * X))
+        self = object.__new__(cls)
+        for name, value in zip(
+            ("p0", "p1", "alpha", "L", "d", "psi", "phi0", "phi1", "x_end", "coefficients"),
+            (
+                Pose(*p0),
+                Pose(*p1),
+                float(alpha),
+                float(L),
+                float(d),
+                float(psi),
+                float(phi0),
+                float(phi1),
+                X,
+                coefficients,
+            ),
+            strict=True,
+        ):
+            object.__setattr__(self, name, value)
+        return self
+
     def __setattr__(self, name, value):
         raise AttributeError("Union is immutable")
 
