@@ -1,0 +1,211 @@
+"""Command line: ``segplan plan SCENARIO.json [--heuristic a|b|c] [--out plan.png] [--json]``.
+
+Plans a forward-only path of the oriented-segment robot (Campoy et al., 1989) on a
+scenario file (see :mod:`segplan.world` for the format), prints its cost (LONGD, the
+front-wheel path length), nodes, expansions and time, and optionally draws it. Errors
+(unreadable or invalid file, no path) print one clear message on stderr and exit with a
+non-zero status, without a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+from .search import NoPathError, Plan, plan_scenario
+from .world import ScenarioError, load_scenario
+
+EXIT_NO_PATH = 1
+EXIT_BAD_INPUT = 2
+
+DESCRIPTION = """\
+Trajectory planning for an oriented-segment mobile robot (Campoy et al., 1989).
+
+The robot is the segment from the middle of the rear axle A to the front wheel B, of
+length L; it drives forward only, with the rear path's curvature at most
+tan(max_steer) / L. A plan is a chain of nodes (poses x, y, theta) joined by cubic
+unions, each in its optimal reference system; its cost is LONGD, the length of the
+front wheel's path. The graph is built on-line (intermediate nodes on the bisectrix of
+the obstacle vertex that blocks a union) and searched by A* with f = g + h'.
+"""
+
+PLAN_EPILOG = """\
+heuristics h' (the paper's three choices):
+  a  LONGD of the direct union from the node to the goal (fast, not admissible)
+  b  distance between the points (admissible, slower)
+  c  weighted average of a and b: w = p / (p + d_s / L), p the node's depth,
+     d_s the median gap between neighbouring obstacles
+
+scenario file (JSON, lengths in metres, angles in degrees):
+  {"L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
+   "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
+   "bounds": [xmin, ymin, xmax, ymax], "obstacles": [[[x, y], ...], ...]}
+
+output: cost, nodes (x, y in m, theta in deg), expansions, generated nodes, time.
+With --json, one JSON object on stdout instead. With --out, a figure with the
+obstacles (enlarged by half_width, lighter), the rear path (solid), the front-wheel
+path (dashed) and the robot at intervals.
+
+exit status: 0 plan found, 1 no path within the limits, 2 bad input.
+examples:
+  segplan plan scenarios/fig5_example1.json
+  segplan plan scenarios/fig5_example1.json --heuristic c --out fig5.png
+  segplan plan scenarios/turn_around.json --json
+"""
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose usage errors use our exit status for bad input."""
+
+    def error(self, message):  # pragma: no cover - exercised through main()
+        self.print_usage(sys.stderr)
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``segplan`` argument parser (sub-command ``plan``)."""
+    parser = _Parser(
+        prog="segplan", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    p = sub.add_parser(
+        "plan",
+        help="plan a path on a scenario file and print (or draw) it",
+        description="Plan a forward-only path from the scenario's start pose to its goal pose.",
+        epilog=PLAN_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("scenario", metavar="SCENARIO.json", help="scenario file (JSON, see below)")
+    p.add_argument("--heuristic", choices=("a", "b", "c"), default="a", help="h' of the search (default: a)")
+    p.add_argument(
+        "--cost",
+        choices=("longd", "distance"),
+        default="longd",
+        help="link cost: LONGD (the method, default) or the distance between node points "
+        "(the paper's comparison baseline); the printed cost is LONGD either way",
+    )
+    p.add_argument(
+        "--frames",
+        choices=("a", "b"),
+        default="b",
+        help="reference systems of intermediate nodes (Fig. 4): b one optimal frame per piece "
+        "(default), a one frame shared by both pieces",
+    )
+    p.add_argument("--out", metavar="PLAN.png", help="draw the plan to this image file")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument(
+        "--max-expansions",
+        type=int,
+        default=3000,
+        metavar="N",
+        help="give up after N expansions (default 3000)",
+    )
+    p.add_argument(
+        "--time-limit", type=float, default=10.0, metavar="S", help="give up after S seconds (default 10)"
+    )
+    return parser
+
+
+def _format_plan(result: Plan, name: str) -> str:
+    lines = [
+        f"scenario    {name}",
+        f"cost        {result.cost:.4f} m (LONGD, front-wheel path length)",
+        f"nodes       {len(result.nodes)} ({len(result.unions)} unions)",
+    ]
+    for i, (p, kind) in enumerate(zip(result.nodes, result.kinds, strict=True)):
+        lines.append(f"  {i:3d}  x={p.x:9.4f}  y={p.y:9.4f}  theta={math.degrees(p.theta):9.3f} deg  {kind}")
+    lines += [
+        f"expansions  {result.expanded}",
+        f"generated   {result.generated}",
+        f"time        {1000.0 * result.seconds:.1f} ms",
+        f"search      heuristic {result.heuristic}, cost {result.cost_kind}, frames {result.version}",
+    ]
+    return "\n".join(lines)
+
+
+def _draw(path: str, scenario, unions, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from . import plot
+
+    fig, ax = plt.subplots(figsize=(10, 7))
+    if scenario.bounds is not None:
+        plot.plot_bounds(scenario.bounds, ax)
+    if scenario.robot.half_width > 0:
+        plot.plot_polygons(scenario.enlarged, ax, facecolor="0.9", edgecolor="0.6", label="enlarged obstacle")
+    plot.plot_polygons(scenario.obstacles, ax)
+    if unions:
+        plot.plot_plan(unions, ax, robots=4)
+    plot.plot_pose(scenario.start, scenario.L, ax, color="tab:green", label="start")
+    plot.plot_pose(scenario.goal, scenario.L, ax, color="tab:red", label="goal")
+    ax.set_title(title)
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``segplan`` command; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_BAD_INPUT
+    try:
+        scenario = load_scenario(args.scenario)
+    except ScenarioError as exc:
+        print(f"segplan: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    name = scenario.name or Path(args.scenario).stem
+    try:
+        result = plan_scenario(
+            scenario,
+            heuristic=args.heuristic,
+            cost=args.cost,
+            version=args.frames,
+            max_expansions=args.max_expansions,
+            time_limit=args.time_limit,
+        )
+    except NoPathError as exc:
+        print(f"segplan: no path: {exc}", file=sys.stderr)
+        if args.json:
+            out = {"scenario": name, "found": False, "reason": exc.reason, "message": str(exc)}
+            out.update({"expanded": exc.expanded, "generated": exc.generated, "seconds": exc.seconds})
+            print(json.dumps(out, indent=2))
+        if args.out:
+            try:
+                _draw(args.out, scenario, exc.best.unions, f"{name}: no path (closest partial plan)")
+            except OSError as err:
+                print(f"segplan: error: cannot write {args.out}: {err.strerror or err}", file=sys.stderr)
+        return EXIT_NO_PATH
+    except ValueError as exc:
+        print(f"segplan: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    if args.json:
+        print(json.dumps({"scenario": name, "found": True, **result.to_dict()}, indent=2))
+    else:
+        print(_format_plan(result, name))
+    if args.out:
+        try:
+            _draw(
+                args.out,
+                scenario,
+                result.unions,
+                f"{name}: LONGD {result.cost:.2f} m, heuristic {args.heuristic}",
+            )
+        except OSError as exc:
+            print(f"segplan: error: cannot write {args.out}: {exc.strerror or exc}", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        if not args.json:
+            print(f"figure      {args.out}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,100 @@
+"""The ``segplan`` command line (issue 3): ``segplan plan SCENARIO.json ...``."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from segplan.cli import EXIT_BAD_INPUT, EXIT_NO_PATH, main
+
+SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
+SINGLE = str(SCENARIOS / "single_obstacle.json")
+
+
+def test_plan_prints_cost_nodes_expansions_time(capsys):
+    assert main(["plan", SINGLE]) == 0
+    out = capsys.readouterr().out
+    for word in ("cost", "nodes", "expansions", "time", "start", "goal"):
+        assert word in out
+
+
+def test_plan_json(capsys):
+    assert main(["plan", SINGLE, "--json", "--heuristic", "c"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["found"] is True and data["heuristic"] == "c"
+    assert data["cost"] > 0 and data["expanded"] >= 1
+    assert data["nodes"][0] == [*json.loads((SCENARIOS / "single_obstacle.json").read_text())["start"]]
+
+
+def test_plan_draws_figure(tmp_path, capsys):
+    out = tmp_path / "plan.png"
+    assert main(["plan", SINGLE, "--out", str(out), "--cost", "distance", "--frames", "a"]) == 0
+    assert out.stat().st_size > 1000
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_bad_file_is_a_clear_error(tmp_path, capsys):
+    assert main(["plan", str(tmp_path / "missing.json")]) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err
+    assert "missing.json" in err and "Traceback" not in err
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"L": 1.0, "start": [0, 0, 0], "goal": [5, 0, 0], "obstacles": [[[0, 0], [1, 1]]]}')
+    assert main(["plan", str(bad)]) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err
+    assert "obstacles[0]" in err and "Traceback" not in err
+
+
+def test_no_path_exit_status(tmp_path, capsys):
+    walled = tmp_path / "walled.json"
+    walled.write_text(
+        json.dumps(
+            {
+                "L": 1.0,
+                "start": [1, 3, 0],
+                "goal": [8, 3, 0],
+                "bounds": [0, 0, 10, 6],
+                "obstacles": [[[4, 0.2], [5, 0.2], [5, 5.8], [4, 5.8]]],
+            }
+        )
+    )
+    out_png = tmp_path / "partial.png"
+    assert main(["plan", str(walled), "--max-expansions", "50", "--out", str(out_png)]) == EXIT_NO_PATH
+    err = capsys.readouterr().err
+    assert "no path" in err and "Traceback" not in err
+    assert out_png.exists()
+
+
+def test_bad_option_values(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["plan", SINGLE, "--heuristic", "z"])
+    assert info.value.code == EXIT_BAD_INPUT
+    assert main(["plan", SINGLE, "--max-expansions", "0"]) == EXIT_BAD_INPUT
+    assert "max_expansions" in capsys.readouterr().err
+
+
+def test_help_explains_everything(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--help"])
+    assert info.value.code == 0
+    assert "plan" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as info:
+        main(["plan", "--help"])
+    assert info.value.code == 0
+    text = capsys.readouterr().out
+    for word in ("--heuristic", "--out", "--json", "LONGD", "exit status", "degrees"):
+        assert word in text
+    assert main([]) == EXIT_BAD_INPUT  # no command: help and a non-zero status
+
+
+def test_console_script_entry_point():
+    exe = shutil.which("segplan", path=str(Path(sys.executable).parent))
+    cmd = [exe] if exe else [sys.executable, "-m", "segplan.cli"]
+    run = subprocess.run([*cmd, "plan", SINGLE], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert "cost" in run.stdout
+    run = subprocess.run([*cmd, "plan", "no/such/file.json"], capture_output=True, text=True, timeout=120)
+    assert run.returncode == EXIT_BAD_INPUT
+    assert "Traceback" not in run.stderr and "no/such/file.json" in run.stderr
