@@ -276,22 +276,27 @@ def _grid_inside(grid, domain: Domain) -> np.ndarray:
 
 
 def run_calibration(
-    design_max: float = DESIGN_MAX, mean_max: float = BOUND_MEAN, max_iter: int = 10
+    design_max: float = DESIGN_MAX,
+    mean_max: float = BOUND_MEAN,
+    max_iter: int = 10,
+    terms: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> Calibration:
     """Fit ``k_alpha`` and the domain on the grid, alternating until the domain is stable.
 
     Starts from ``k_alpha`` fitted on ``|phi_i| <= 30 deg``, ``d / L >= 3``. Deterministic.
+    ``terms``: optional ``(rear, front)`` arrays on :func:`calibration_grid` replacing the
+    terms of the derived [2] (``LONGD ~ d (1 + k rear) + front``), to calibrate a variant
+    (see :func:`variant_domains`).
     """
     g = calibration_grid()
     d, alpha = g["d_over_L"], np.radians(g["alpha_deg"])
+    rear, front = (g["rear"], g["front"]) if terms is None else terms
     inside = (np.maximum(np.abs(g["phi0_deg"]), np.abs(g["phi1_deg"])) <= 30) & (d >= 3)
     domain, iterations = None, 0
     while iterations < max_iter:
         iterations += 1
-        coef = fit_k(d[inside], alpha[inside], g["exact"][inside], g["rear"][inside], g["front"][inside])
-        err = np.abs(
-            (d * (1.0 + k_from_coef(coef, alpha) * g["rear"]) + g["front"] - g["exact"]) / g["exact"]
-        )
+        coef = fit_k(d[inside], alpha[inside], g["exact"][inside], rear[inside], front[inside])
+        err = np.abs((d * (1.0 + k_from_coef(coef, alpha) * rear) + front - g["exact"]) / g["exact"])
         new = fit_domain(g, err, design_max, mean_max)
         inside = _grid_inside(g, new)
         if new == domain:
@@ -579,3 +584,225 @@ def variant_comparison(n_wide: int = 20000, seed: int = 0):
         "p95_wide",
     ]
     return pd.DataFrame(rows, columns=cols).sort_values("mean_domain", ignore_index=True)
+
+
+def _parse_variant(name: str) -> tuple[str, str, str]:
+    """``"rule|cross=c|exp=e"`` -> ``(rule, c, e)``."""
+    rule, cross, exponent = (part.split("=")[-1] for part in name.split("|"))
+    return rule, cross, exponent
+
+
+def variant_terms(name: str, d_over_L, phi0, phi1, alpha):
+    """The rear excess (before ``k``) and the front excess of a variant of [2] (``L = 1``).
+
+    ``name`` is a key of :func:`segplan.derivation.variants`; the variant reads
+    ``LONGD ~ d (1 + k rear) + front``.
+    """
+    from . import derivation
+    from .union import chord_slopes
+
+    if name not in derivation.variants():
+        raise ValueError(f"name must be a variant of segplan.derivation.variants(), got {name!r}")
+    rule, cross, exponent = _parse_variant(name)
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    rear = derivation.rear_lambdified(rule)(alpha, m0, m1)
+    front = derivation.front_lambdified(cross, exponent)(d_over_L, alpha, m0, m1, 1.0)
+    return np.broadcast_to(rear, np.shape(front)), front
+
+
+def variant_domains():
+    """Each variant of [2] calibrated on its own: ``k(alpha)`` and the domain where the bounds hold.
+
+    :func:`variant_comparison` measures every variant inside the domain fitted for the
+    derived [2], which favours it. Here each variant of
+    :func:`segplan.derivation.variants` goes through the whole calibration
+    (:func:`run_calibration` with the variant's terms), so each gets the largest domain
+    where *its* errors meet the paper's bounds on the grid; a larger domain is a better
+    formula.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per variant: ``variant, rear, cross, exponent, k_c0, k_c1, n_inside,
+        share_inside`` (of the grid points), ``max_error, mean_error`` (inside its domain),
+        sorted by ``n_inside`` (largest first).
+    """
+    import pandas as pd
+
+    from . import derivation
+
+    g = calibration_grid()
+    args = (g["d_over_L"], np.radians(g["phi0_deg"]), np.radians(g["phi1_deg"]), np.radians(g["alpha_deg"]))
+    rows = []
+    for name in derivation.variants():
+        try:
+            c = run_calibration(terms=variant_terms(name, *args))
+            row = (*c.k_coef, c.n_inside, c.n_inside / c.n_grid, c.max_error, c.mean_error)
+        except RuntimeError:  # no domain at all
+            row = (math.nan, math.nan, 0, 0.0, math.nan, math.nan)
+        rows.append((name, *_parse_variant(name), *row))
+    cols = ["variant", "rear", "cross", "exponent", "k_c0", "k_c1", "n_inside", "share_inside"]
+    cols += ["max_error", "mean_error"]
+    df = pd.DataFrame(rows, columns=cols)
+    return df.sort_values(["n_inside", "mean_error"], ascending=[False, True], ignore_index=True)
+
+
+def exact_split(d_over_L, phi0, phi1, alpha, rtol: float = 1e-10):
+    """Exact LONGD [1] and the exact rear-path length of many cases (``L = 1``).
+
+    The rear length is [1] with ``L = 0`` (``int sqrt(1 + f'^2) dx``); LONGD minus it is
+    the front-wheel excess that the last term of [2] approximates, and ``rear / d - 1``
+    is the rear excess that ``k_alpha`` times the first term approximates.
+
+    Returns
+    -------
+    longd, rear_length : ndarray
+    """
+    longd = exact_values(d_over_L, phi0, phi1, alpha, 1.0, rtol=rtol)
+    rear = exact_values(d_over_L, phi0, phi1, alpha, 0.0, rtol=rtol)
+    return longd, rear
+
+
+def term_study(
+    d_over_L,
+    phi0,
+    phi1,
+    alpha,
+    rules=("exact", "simpson", "second_order"),
+    fronts=(("-1/2", "-5/2"), ("1/2", "-5/2")),
+):
+    """Each term of [2] against its exact counterpart, case by case, with no ``k`` fitted.
+
+    Parameters
+    ----------
+    d_over_L, phi0, phi1, alpha : array_like
+        Cases with ``L = 1`` (radians).
+    rules : sequence of str
+        Rear rules (:func:`segplan.derivation.rear_term`).
+    fronts : sequence of (cross, exponent)
+        Front terms (:func:`segplan.derivation.front_term`), rationals as strings.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``d_over_L, alpha_deg, phi0_deg, phi1_deg, longd, rear_excess`` (exact
+        ``rear length / d - 1``), ``front_excess`` (exact ``LONGD - rear length``); for
+        each rule ``k_ideal|<rule>`` (the ``k`` that would make the first term exact:
+        ``rear_excess / term``); for each front term ``front|cross=<c>|exp=<e>`` (its
+        value).
+    """
+    import pandas as pd
+
+    from . import derivation
+    from .union import chord_slopes
+
+    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
+    longd, rear = exact_split(dl, p0, p1, a)
+    m0, m1 = chord_slopes(p0, p1, a)
+    out = {
+        "d_over_L": dl,
+        "alpha_deg": np.degrees(a),
+        "phi0_deg": np.degrees(p0),
+        "phi1_deg": np.degrees(p1),
+        "longd": longd,
+        "rear_excess": rear / dl - 1.0,
+        "front_excess": longd - rear,
+    }
+    with np.errstate(divide="ignore", invalid="ignore"):  # a zero term (straight union) gives nan
+        for rule in rules:
+            out[f"k_ideal|{rule}"] = out["rear_excess"] / derivation.rear_lambdified(rule)(a, m0, m1)
+    for cross, exponent in fronts:
+        out[f"front|cross={cross}|exp={exponent}"] = derivation.front_lambdified(cross, exponent)(
+            dl, a, m0, m1, 1.0
+        )
+    return pd.DataFrame(out)
+
+
+def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
+    """Integrand evaluations Romberg needs for [1] to meet ``rtol``, case by case (``L = 1``).
+
+    Section "Approximate computation of cost function" compares [2] with "Romberg
+    integration with the same maximum error bound". Romberg's stopping rule
+    (:func:`segplan.romberg.romberg`) is applied to each case alone, from ``min_levels``
+    halvings on (level ``k`` uses ``2**k + 1`` points), so the count is the work that
+    bound asks for. :func:`segplan.longd_exact` uses at least 4 levels (17 points).
+
+    Returns
+    -------
+    evaluations : ndarray of int
+        Integrand evaluations per case.
+    value : ndarray
+        Romberg's LONGD per case.
+    """
+    from .cost import longd_integrand
+    from .romberg import romberg
+
+    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
+    evaluations = np.zeros(dl.size, dtype=int)
+    value = np.empty(dl.size)
+    for i in range(dl.size):
+        count = [0]
+
+        def f(tau, i=i, count=count):
+            count[0] += tau.size
+            return longd_integrand(tau, dl[i], p0[i], p1[i], a[i], 1.0)
+
+        value[i] = romberg(f, 0.0, 1.0, rtol=rtol, min_levels=min_levels)[0]
+        evaluations[i] = count[0]
+    return evaluations, value
+
+
+def planner_links(scenarios, **options):
+    """Every LONGD evaluation the planner makes while solving ``scenarios``, recorded.
+
+    Each scenario is planned with :func:`segplan.plan_scenario` (``options`` passed on);
+    meanwhile every call of the planner's link cost (``Expander.link_cost``, which uses
+    [2] inside the domain and [1] outside: :func:`segplan.cost.longd`) is recorded, for
+    links (``g``) and heuristic estimates (``h'`` (a)) alike. The unions are the ones the
+    search builds: in their optimal reference system
+    (:func:`segplan.optimal_alpha_intrinsic`), or the steering fallback's frame.
+    Instrumentation only: the planner runs unchanged.
+
+    Parameters
+    ----------
+    scenarios : dict of str to Scenario
+        Named scenarios.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per evaluation: ``scenario, d_over_L, phi0_deg, phi1_deg, alpha_deg,
+        in_plan`` (the union belongs to the plan found) and ``in_domain``. Scenarios
+        without a plan (:class:`segplan.NoPathError`) contribute their evaluations with
+        ``in_plan`` False.
+    """
+    from unittest import mock
+
+    import pandas as pd
+
+    from .expansion import Expander
+    from .search import NoPathError, plan_scenario
+
+    record = []
+    original = Expander.link_cost
+
+    def link_cost(self, u):
+        record.append(u)
+        return original(self, u)
+
+    rows = []
+    for name, scenario in scenarios.items():
+        record.clear()
+        with mock.patch.object(Expander, "link_cost", link_cost):
+            try:
+                unions = {id(u) for u in plan_scenario(scenario, **options).unions}
+            except NoPathError:
+                unions = set()
+        rows += [(name, u.d / u.L, u.phi0, u.phi1, u.alpha, id(u) in unions) for u in record]
+    cols = ["scenario", "d_over_L", "phi0", "phi1", "alpha", "in_plan"]
+    df = pd.DataFrame(rows, columns=cols)
+    dl, p0, p1, a = (df[c].to_numpy(dtype=float) for c in ("d_over_L", "phi0", "phi1", "alpha"))
+    df["in_domain"] = np.asarray(calibration().domain.contains(dl, p0, p1, a, 1.0), dtype=bool)
+    for col in ("phi0", "phi1", "alpha"):
+        df[col] = np.degrees(df[col])
+    return df.rename(columns={"phi0": "phi0_deg", "phi1": "phi1_deg", "alpha": "alpha_deg"})

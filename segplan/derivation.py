@@ -52,6 +52,10 @@ mbar0, mbar1 = sp.symbols("mbar0 mbar1", real=True)
 k = sp.Symbol("k_alpha", positive=True)
 x, s, t, u, eps = sp.symbols("x s t u epsilon", real=True)
 A_, w_ = sp.symbols("A w", positive=True)  # 1 + f'^2 and |f''| as plain symbols
+gp_ = sp.Symbol("g'", real=True)  # g'(x) as a plain symbol
+#: Undefined functions that *state* a step for display (:attr:`Step.shown`); evaluated by
+#: :func:`_concrete` (``f`` the cubic, ``g`` the bump, ``u`` of step 3, ``g'`` of the unit bump).
+f_fn, g_fn, u_fn, gp_fn = sp.Function("f"), sp.Function("g"), sp.Function("u"), sp.Function("g'")
 
 #: Quadratic forms of the chord-relative slopes.
 Q1 = mbar0**2 + mbar1**2 - sp.Rational(1, 2) * mbar0 * mbar1
@@ -60,17 +64,33 @@ Q2 = mbar0**2 + mbar1**2 + mbar0 * mbar1
 
 @dataclass(frozen=True)
 class Step:
-    """One step of the derivation: ``lhs = rhs``, proved by sympy (``holds``)."""
+    """One step of the derivation: ``lhs = rhs``, proved by sympy (``holds``).
+
+    ``lhs`` is what sympy computed (an integral done, a series expanded, ...), ``rhs`` the
+    closed form. ``shown``, when given, states the left side with unevaluated operators
+    (integrals, derivatives of the undefined ``f``, ``g``) for display; ``relation`` is
+    ``"="`` or ``"~"`` (an approximation: a truncated series or a mean value). For ``"="``
+    steps ``holds`` also requires that ``shown``, evaluated with the concrete ``f``, ``g``
+    (:func:`_concrete`), equals ``lhs``: the displayed statement is checked too. For
+    ``"~"`` steps ``holds`` checks the algebra after the approximation (``lhs = rhs``).
+    """
 
     title: str
     lhs: sp.Expr
     rhs: sp.Expr
     holds: bool
     note: str = ""
+    shown: sp.Expr | None = None
+    relation: str = "="
 
     def equation(self) -> sp.Eq:
         """The step as an unevaluated ``sympy.Eq`` (for display)."""
         return sp.Eq(self.lhs, self.rhs, evaluate=False)
+
+    def latex(self) -> str:
+        """LaTeX of the step as stated: ``shown`` (or ``lhs``), ``=`` or ``\\approx``, ``rhs``."""
+        left = self.lhs if self.shown is None else self.shown
+        return sp.latex(left) + (r" \approx " if self.relation == "~" else " = ") + sp.latex(self.rhs)
 
 
 def _proved(lhs, rhs) -> bool:
@@ -78,8 +98,28 @@ def _proved(lhs, rhs) -> bool:
     return diff == 0 or sp.cancel(diff) == 0 or sp.simplify(diff) == 0
 
 
-def _step(title: str, lhs, rhs, note: str = "") -> Step:
-    return Step(title, lhs, rhs, _proved(lhs, rhs), note)
+def _concrete(expr) -> sp.Expr:
+    """Evaluate a stated step: the undefined ``f``, ``g``, ``u``, ``g'`` replaced and ``doit``."""
+    g1 = sp.diff(bump(), x)
+    h10, h11 = hermite_basis()
+    unit = mbar0 * sp.diff(h10, s) + mbar1 * sp.diff(h11, s)
+    out = sp.sympify(expr).replace(f_fn, sp.Lambda(x, cubic())).replace(g_fn, sp.Lambda(x, bump()))
+    out = out.replace(u_fn, sp.Lambda(x, (2 * t * g1 + g1**2) / (1 + t**2)))  # u = cos^2 (2 t g' + g'^2)
+    return _in_t(out.replace(gp_fn, sp.Lambda(s, unit)), keep_x=True).doit()
+
+
+def _in_t(expr, keep_x: bool = False) -> sp.Expr:
+    """Trigonometric functions of alpha in ``t = tan(alpha)``, and ``X = d cos(alpha)``."""
+    sec = sp.sqrt(1 + t**2)
+    out = sp.sympify(expr).subs({sp.sec(alpha): sec, sp.cos(alpha): 1 / sec, sp.tan(alpha): t})
+    return out if keep_x else out.subs(X, d / sec)
+
+
+def _step(title: str, lhs, rhs, note: str = "", shown=None, relation: str = "=") -> Step:
+    holds = _proved(lhs, rhs)
+    if holds and shown is not None and relation == "=":
+        holds = _proved(_in_t(_concrete(shown)), _in_t(lhs))
+    return Step(title, lhs, rhs, holds, note, shown, relation)
 
 
 # -- step 1: the cubic -----------------------------------------------------------------
@@ -104,10 +144,20 @@ def cubic_steps() -> list[Step]:
     f = cubic()
     fp = sp.diff(f, x)
     return [
-        _step("f(0) = 0", f.subs(x, 0), sp.S.Zero),
-        _step("f(X) = X tan(alpha) = d sin(alpha)", f.subs(x, X), X * t),
-        _step("f'(0) = tan(alpha) + mbar0", fp.subs(x, 0), t + mbar0),
-        _step("f'(X) = tan(alpha) + mbar1", fp.subs(x, X), t + mbar1),
+        _step("f(0) = 0", f.subs(x, 0), sp.S.Zero, shown=f_fn(0)),
+        _step("f(X) = X tan(alpha) = d sin(alpha)", f.subs(x, X), X * t, shown=f_fn(X)),
+        _step(
+            "f'(0) = tan(alpha) + mbar0",
+            fp.subs(x, 0),
+            t + mbar0,
+            shown=sp.Subs(sp.Derivative(f_fn(x), x), x, 0),
+        ),
+        _step(
+            "f'(X) = tan(alpha) + mbar1",
+            fp.subs(x, X),
+            t + mbar1,
+            shown=sp.Subs(sp.Derivative(f_fn(x), x), x, X),
+        ),
     ]
 
 
@@ -118,13 +168,29 @@ def bump_integral_steps() -> list[Step]:
     gp, gpp = sp.diff(g, x), sp.diff(g, x, 2)
     fp = t + gp
     return [
-        _step("int g' dx = 0 (the bump vanishes at both ends)", sp.integrate(gp, (x, 0, X)), sp.S.Zero),
-        _step("int g'^2 dx = (2 X / 15) Q1", sp.integrate(gp**2, (x, 0, X)), 2 * X * Q1 / 15),
-        _step("int f''^2 dx = 4 Q2 / X", sp.integrate(gpp**2, (x, 0, X)), 4 * Q2 / X),
+        _step(
+            "int g' dx = 0 (the bump vanishes at both ends)",
+            sp.integrate(gp, (x, 0, X)),
+            sp.S.Zero,
+            shown=sp.Integral(sp.Derivative(g_fn(x), x), (x, 0, X)),
+        ),
+        _step(
+            "int g'^2 dx = (2 X / 15) Q1",
+            sp.integrate(gp**2, (x, 0, X)),
+            2 * X * Q1 / 15,
+            shown=sp.Integral(sp.Derivative(g_fn(x), x) ** 2, (x, 0, X)),
+        ),
+        _step(
+            "int f''^2 dx = 4 Q2 / X",
+            sp.integrate(gpp**2, (x, 0, X)),
+            4 * Q2 / X,
+            shown=sp.Integral(sp.Derivative(f_fn(x), (x, 2)) ** 2, (x, 0, X)),
+        ),
         _step(
             "mean of 1 + f'^2 = 1 + tan^2(alpha) + (2/15) Q1",
             1 + sp.integrate(fp**2, (x, 0, X)) / X,
             1 + t**2 + 2 * Q1 / 15,
+            shown=sp.Mul(1 / X, sp.Integral(1 + sp.Derivative(f_fn(x), x) ** 2, (x, 0, X)), evaluate=False),
         ),
     ]
 
@@ -132,7 +198,7 @@ def bump_integral_steps() -> list[Step]:
 # -- step 3: the rear path (first-order binomial) --------------------------------------
 def rear_steps() -> list[Step]:
     """First-order binomial expansion of ``sqrt(1 + f'^2)`` about the chord's slope."""
-    gp = sp.Symbol("gp", real=True)  # g'(x) as a plain symbol
+    gp = gp_  # g'(x) as a plain symbol
     c2 = 1 / (1 + t**2)  # cos^2(alpha)
     sec = sp.sqrt(1 + t**2)
     series = sp.series(sp.sqrt(1 + u), u, 0, 2).removeO()
@@ -145,12 +211,19 @@ def rear_steps() -> list[Step]:
             1 + (t + gp) ** 2,
             (1 + c2 * (2 * t * gp + gp**2)) / c2,
         ),
-        _step("sqrt(1 + u) = 1 + u/2 + O(u^2)  (first-order binomial)", series, 1 + u / 2),
+        _step(
+            "sqrt(1 + u) = 1 + u/2 + O(u^2)  (first-order binomial)",
+            series,
+            1 + u / 2,
+            shown=sp.sqrt(1 + u),
+            relation="~",
+        ),
         _step(
             "int sec(alpha) (1 + u/2) dx = d [1 + cos^2(alpha) Q1 / 15]",
             rear,
             d * (1 + c2 * Q1 / 15),
             "integrated by sympy with the bump's g'; X sec(alpha) = d",
+            shown=sp.Integral(sp.sec(alpha) * (1 + u_fn(x) / 2), (x, 0, X)),
         ),
     ]
 
@@ -165,18 +238,26 @@ def rear_second_order_steps() -> list[Step]:
     the factor ``1 / cos^2(alpha)``, which the paper's ``k_alpha < 1`` (depending on alpha)
     compensates.
     """
-    gp = sp.Symbol("gp", real=True)
+    gp = gp_
     sec = sp.sqrt(1 + t**2)
     series = sp.series(sp.sqrt(1 + (t + eps * gp) ** 2), eps, 0, 3).removeO()
     expected = sec + eps * t * gp / sec + eps**2 * gp**2 / (2 * sec**3)
     g1 = sp.diff(bump(), x)
     rear = sp.integrate(sp.expand(expected.subs({eps: 1, gp: g1})), (x, 0, X)).subs(X, d / sec)
     return [
-        _step("sqrt(1 + (t + eps g')^2) to O(eps^2)", series, expected),
+        _step(
+            "sqrt(1 + (t + eps g')^2) to O(eps^2)",
+            series,
+            expected,
+            shown=sp.sqrt(1 + (t + eps * gp) ** 2),
+            relation="~",
+        ),
         _step(
             "int sqrt(1 + f'^2) dx ~ d [1 + cos^4(alpha) Q1 / 15]",
             rear,
             d * (1 + Q1 / (15 * (1 + t**2) ** 2)),
+            shown=sp.Integral(sp.sqrt(1 + sp.Derivative(f_fn(x), x) ** 2), (x, 0, X)),
+            relation="~",
         ),
     ]
 
@@ -196,6 +277,8 @@ def front_steps() -> list[Step]:
             "sqrt(A + L^2 f''^2 / A^2) = sqrt(A) + (L^2 / 2) f''^2 A^(-5/2) + O(L^4)",
             series,
             sp.sqrt(A_) + L**2 * w_**2 / (2 * A_ ** sp.Rational(5, 2)),
+            shown=integrand,
+            relation="~",
         ),
         _step(
             "(L^2/2) int f''^2 A^(-5/2) dx ~ (L^2/2) mean(A)^(-5/2) int f''^2 dx = "
@@ -204,6 +287,14 @@ def front_steps() -> list[Step]:
             closed,
             "mean-value theorem with the positive weight f''^2; the intermediate value of A "
             "is taken at its mean over the span",
+            shown=L**2
+            / 2
+            * sp.Integral(
+                sp.Derivative(f_fn(x), (x, 2)) ** 2
+                * (1 + sp.Derivative(f_fn(x), x) ** 2) ** sp.Rational(-5, 2),
+                (x, 0, X),
+            ),
+            relation="~",
         ),
     ]
 
@@ -255,7 +346,16 @@ def formula2_steps() -> list[Step]:
         d * (1 + k * c2 * Q1 / 15) + 2 * L**2 * sec / d * (1 / c2 + 2 * Q1 / 15) ** sp.Rational(-5, 2) * Q2
     )
     in_alpha = formula2().subs(sp.cos(alpha), 1 / sec)  # cos(alpha) = 1 / sqrt(1 + tan^2)
-    return [_step("formula [2] (derived)", in_alpha, assembled, "k_alpha scales the rear excess")]
+    return [
+        _step(
+            "formula [2] (derived)",
+            in_alpha,
+            assembled,
+            "k_alpha scales the rear excess",
+            shown=sp.Symbol("LONGD"),
+            relation="~",
+        )
+    ]
 
 
 # -- the OCR's 5/48 and 2/5 -----------------------------------------------------------
@@ -287,22 +387,29 @@ def ocr_steps() -> list[Step]:
     readings = rear_quadrature_readings()
     ocr = sp.Rational(5, 24) * (mbar0**2 + mbar1**2 + sp.Rational(2, 5) * mbar0 * mbar1)
     c2 = sp.cos(alpha) ** 2
+    half = sp.Rational(1, 2)
+    simpson = sp.Mul(
+        sp.Rational(1, 6), gp_fn(0) ** 2 + 4 * gp_fn(half) ** 2 + gp_fn(1) ** 2, evaluate=False
+    )  # Simpson's rule on int_0^1 g'(s)^2 ds
     return [
         _step(
             "Simpson: int_0^1 g'^2 ds ~ (5/24)(mbar0^2 + mbar1^2 + (2/5) mbar0 mbar1)",
             readings["simpson"],
             ocr,
+            shown=simpson,
         ),
         _step(
             "rear excess (cos^2(alpha)/2) x Simpson = OCR's 5/48 cos^2(alpha)(...)",
             c2 / 2 * readings["simpson"],
             rear_term("simpson"),
+            shown=sp.Mul(c2 / 2, simpson, evaluate=False),
         ),
         _step(
             "Simpson - exact = (3/40)(mbar0 + mbar1)^2 >= 0 (g'^2 is a quartic: Simpson is not exact)",
             readings["simpson"] - readings["exact"],
             sp.Rational(3, 40) * (mbar0 + mbar1) ** 2,
             "the OCR's first term overestimates the binomial rear excess unless mbar0 = -mbar1",
+            shown=simpson - sp.Integral(gp_fn(s) ** 2, (s, 0, 1)),
         ),
     ]
 
@@ -344,3 +451,22 @@ def lambdified(name: str = DERIVED_VARIANT):
     """A numpy function ``(d, alpha, mbar0, mbar1, L, k_alpha) -> LONGD`` of a variant."""
     expr = variants()[name]
     return sp.lambdify((d, alpha, mbar0, mbar1, L, k), expr, modules="numpy")
+
+
+@cache
+def rear_lambdified(rule: str = "exact"):
+    """A numpy function ``(alpha, mbar0, mbar1) -> rear excess`` of [2] before ``k_alpha``.
+
+    See :func:`rear_term` for the rules (``"exact"``, ``"simpson"``, ``"second_order"``).
+    """
+    return sp.lambdify((alpha, mbar0, mbar1), rear_term(rule), modules="numpy")
+
+
+@cache
+def front_lambdified(cross: str = "-1/2", exponent: str = "-5/2"):
+    """A numpy function ``(d, alpha, mbar0, mbar1, L) -> front excess`` of [2].
+
+    ``cross`` and ``exponent`` are rationals written as strings (e.g. ``"1/2"``,
+    ``"-11/4"``); see :func:`front_term`.
+    """
+    return sp.lambdify((d, alpha, mbar0, mbar1, L), front_term(cross, exponent), modules="numpy")

@@ -1,6 +1,7 @@
 """LONGD: [1] against independent oracles, [2] inside its validated domain, the dispatch."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -300,3 +301,77 @@ def test_variant_comparison_picks_the_derived_terms():
     assert v.loc["simpson|cross=-1/2|exp=-5/2", "mean_domain"] > 2 * derived["mean_domain"]
     assert v.loc["exact|cross=-1/2|exp=-3/2", "max_domain"] > 2 * derived["max_domain"]
     assert v.loc["exact|cross=-1/2|exp=-2", "max_domain"] > derived["max_domain"]
+
+
+def test_run_calibration_with_the_derived_terms_is_the_calibration():
+    g = cal.calibration_grid()
+    assert cal.run_calibration(terms=(g["rear"], g["front"])) == cal.calibration()
+    args = (g["d_over_L"], np.radians(g["phi0_deg"]), np.radians(g["phi1_deg"]), np.radians(g["alpha_deg"]))
+    rear, front = cal.variant_terms("exact|cross=-1/2|exp=-5/2", *args)
+    np.testing.assert_allclose(rear, g["rear"], rtol=1e-12)
+    np.testing.assert_allclose(front, g["front"], rtol=1e-12)
+    with pytest.raises(ValueError, match="name"):
+        cal.variant_terms("exact|cross=0|exp=-5/2", *args)
+
+
+def test_variant_domains_rank_the_ocr_simpson_term_below_the_derived_one():
+    v = cal.variant_domains().set_index("variant")
+    assert len(v) == 18
+    derived, c = v.loc["exact|cross=-1/2|exp=-5/2"], cal.calibration()
+    assert derived["n_inside"] == c.n_inside
+    assert (derived["k_c0"], derived["k_c1"]) == pytest.approx(c.k_coef, rel=1e-12)
+    assert np.all(v["max_error"].dropna() <= cal.DESIGN_MAX)
+    assert np.all(v["mean_error"].dropna() <= cal.BOUND_MEAN)
+    simpson = v[v["rear"] == "simpson"]
+    assert simpson["n_inside"].max() < 0.9 * derived["n_inside"]
+
+
+def test_exact_split_against_quad():
+    rng = np.random.default_rng(11)
+    dl, phi0, phi1, alpha = rng.uniform(1, 10, 6), *rng.uniform(-0.6, 0.6, (3, 6))
+    longd, rear = cal.exact_split(dl, phi0, phi1, alpha)
+    for i in range(dl.size):
+        p0, p1 = world_pair(0.0, 0.0, 0.4, dl[i], phi0[i], phi1[i])
+        u = segplan.Union(p0, p1, alpha[i], 1.0)
+        ref = quad(lambda x, u=u: math.sqrt(1 + u.slope(x) ** 2), 0.0, u.x_end, epsabs=0, epsrel=1e-13)[0]
+        assert rear[i] == pytest.approx(ref, rel=1e-9)
+        assert longd[i] == pytest.approx(segplan.longd_exact(p0, p1, alpha[i], 1.0), rel=1e-9)
+    assert np.all(longd > rear) and np.all(rear >= dl)
+
+
+def test_term_study_columns_and_ideal_k():
+    df = cal.term_study(*cal.sample_domain(400, seed=3))
+    assert {"longd", "rear_excess", "front_excess", "k_ideal|exact", "front|cross=-1/2|exp=-5/2"} <= set(df)
+    # the binomial rear term overestimates the rear excess: the ideal k lies in (0, 1]
+    k = df["k_ideal|exact"].dropna()
+    assert np.all((k > 0) & (k < 1 + 1e-6))
+    # Simpson overestimates the exact integral (by 3/40 (mbar0 + mbar1)^2): smaller ideal k
+    assert np.all(df["k_ideal|simpson"].dropna() <= k + 1e-9)
+    np.testing.assert_allclose(df["longd"], df["d_over_L"] * (1 + df["rear_excess"]) + df["front_excess"])
+
+
+def test_romberg_work_counts_points_and_meets_the_bound_with_four_levels():
+    dl, phi0, phi1, alpha = cal.sample_domain(200, seed=4)
+    exact = cal.exact_values(dl, phi0, phi1, alpha, 1.0, rtol=1e-12)
+    ev, val = cal.romberg_work(dl, phi0, phi1, alpha, rtol=cal.BOUND_MAX)
+    assert set(np.unique(ev)) <= {3, 5, 9, 17, 33}
+    ev4, val4 = cal.romberg_work(dl, phi0, phi1, alpha, rtol=cal.BOUND_MAX, min_levels=4)
+    assert np.all(ev4 >= 17) and np.all(ev4 >= ev)
+    assert np.max(np.abs(val4 / exact - 1)) < cal.BOUND_MAX
+    ev_t, val_t = cal.romberg_work(dl[:20], phi0[:20], phi1[:20], alpha[:20], rtol=1e-10)
+    np.testing.assert_allclose(val_t, exact[:20], rtol=1e-9)
+
+
+def test_planner_links_records_the_search_link_costs():
+    sc = segplan.load_scenario(Path(__file__).parents[1] / "scenarios" / "single_obstacle.json")
+    df = cal.planner_links({"one": sc})
+    plan = segplan.plan_scenario(sc)
+    assert len(df) > 0 and set(df["scenario"]) == {"one"}
+    assert df["in_plan"].sum() >= len(plan.unions)
+    expected = cal.in_domain(
+        df["d_over_L"].to_numpy(), *np.radians(df[["phi0_deg", "phi1_deg", "alpha_deg"]].to_numpy().T), 1.0
+    )
+    np.testing.assert_array_equal(df["in_domain"].to_numpy(), expected)
+    # the planner runs unchanged once the recording is over
+    assert segplan.expansion.Expander.link_cost.__name__ == "link_cost"
+    assert "planner_links" not in segplan.expansion.Expander.link_cost.__qualname__

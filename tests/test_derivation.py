@@ -97,3 +97,45 @@ def test_explicit_k_is_used():
     np.testing.assert_allclose(
         longd_approx_intrinsic(d, phi0, phi1, alpha, L, k=0.5), f(d, alpha, m0, m1, L, 0.5), rtol=1e-12
     )
+
+
+def test_term_functions_are_the_terms_of_the_formula():
+    d, phi0, phi1, alpha, L = _random_cases(1000, seed=10)
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    rear, front = approx_terms(d, phi0, phi1, alpha, L)
+    np.testing.assert_allclose(dv.rear_lambdified()(alpha, m0, m1), rear, rtol=1e-12)
+    np.testing.assert_allclose(dv.front_lambdified()(d, alpha, m0, m1, L), front, rtol=1e-12)
+    # every variant is d (1 + k rear) + front with its own rule, cross and exponent
+    for name in ("simpson|cross=1/2|exp=-3/2", "second_order|cross=-1/2|exp=-2"):
+        rule, cross, exponent = (part.split("=")[-1] for part in name.split("|"))
+        r = dv.rear_lambdified(rule)(alpha, m0, m1)
+        f = dv.front_lambdified(cross, exponent)(d, alpha, m0, m1, L)
+        np.testing.assert_allclose(
+            d * (1 + 0.7 * r) + f, dv.lambdified(name)(d, alpha, m0, m1, L, 0.7), rtol=1e-12
+        )
+    # the OCR-literal Simpson rear term at one point, by hand
+    a, b, c = 0.3, 0.2, -0.1
+    hand = 5 / 48 * np.cos(a) ** 2 * (b**2 + c**2 + 2 / 5 * b * c)
+    assert dv.rear_lambdified("simpson")(a, b, c) == pytest.approx(hand, rel=1e-14)
+    # a general rational exponent
+    e = dv.front_lambdified("-1/2", "-11/4")(2.0, a, b, c, 1.0)
+    q1, q2 = b * b + c * c - b * c / 2, b * b + c * c + b * c
+    assert e == pytest.approx(
+        2 / (2.0 * np.cos(a)) * (1 / np.cos(a) ** 2 + 2 * q1 / 15) ** -2.75 * q2, rel=1e-14
+    )
+
+
+def test_displayed_statements_are_checked_too():
+    steps = dv.derivation_steps()
+    assert all(s.shown is not None for s in steps if "sec^2(alpha) (1 + u)" not in s.title)
+    assert {s.relation for s in steps} == {"=", "~"}
+    for s in steps:
+        tex = s.latex()
+        assert (r"\approx" in tex) == (s.relation == "~")
+    # a wrong statement for a right lhs = rhs is caught
+    g = dv.bump()
+    lhs = sp.integrate(sp.diff(g, dv.x) ** 2, (dv.x, 0, dv.X))
+    wrong = sp.Integral(sp.Derivative(dv.g_fn(dv.x), dv.x), (dv.x, 0, dv.X))  # g', not g'^2
+    right = sp.Integral(sp.Derivative(dv.g_fn(dv.x), dv.x) ** 2, (dv.x, 0, dv.X))
+    assert dv._step("t", lhs, 2 * dv.X * dv.Q1 / 15, shown=right).holds
+    assert not dv._step("t", lhs, 2 * dv.X * dv.Q1 / 15, shown=wrong).holds
