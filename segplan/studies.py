@@ -1,0 +1,326 @@
+"""Study helpers for the book's search chapters (Figs. 5 and 6; the choices of ``h'``).
+
+Section "Results. Graph-search" of Campoy et al. (1989) compares plans by their cost,
+LONGD (formula [1]: the length of the front wheel's path), and by the effort of the
+search. This module adds what those comparisons need and the planner does not compute:
+
+- :func:`rear_length`, :func:`plan_rear_length`: the length of the rear point's path
+  A, ``integral of sqrt(1 + f'(x)^2) dx`` (formula [1] without its ``L^2`` term), by
+  Romberg integration;
+- :func:`run_searches`: one scenario, several search settings, one record each (a plan's
+  cost and effort, or why no plan was found);
+- :func:`shortest_point_path` and :func:`point_lower_bounds`: a lower bound on any
+  plan's cost. The whole segment A-B stays clear of the enlarged obstacles and strictly
+  inside the walls shrunk by the half-width, so the front wheel B travels from the
+  start's B to the goal's B through that free space, and its path (of length LONGD) is
+  at least the shortest path of a *point* between those two points among the same
+  polygons; likewise for A and the rear length. That shortest path is found exactly on
+  the visibility graph of the polygon vertices (Lozano-Perez and Wesley, 1979).
+
+Nothing here plans: the search is :func:`segplan.search.plan_scenario`.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from .romberg import romberg
+from .search import NoPathError, Plan, plan_scenario
+from .union import Union
+from .world import Scenario, pose_segment
+
+__all__ = [
+    "plan_rear_length",
+    "point_lower_bounds",
+    "rear_length",
+    "run_searches",
+    "shortest_point_path",
+]
+
+
+# -- lengths of a plan --------------------------------------------------------------------
+def rear_length(union: Union, rtol: float = 1e-10) -> float:
+    """Length of the rear point's path over a union, by Romberg integration.
+
+    ``integral_0^{x_end} sqrt(1 + f'(x)^2) dx`` in the union's alpha frame: formula [1]
+    without the ``L^2 f''^2 / (1 + f'^2)^2`` term, so it never exceeds the union's LONGD.
+
+    Raises
+    ------
+    ValueError
+        ``union`` is not a :class:`segplan.Union`, or a bad ``rtol``.
+    """
+    if not isinstance(union, Union):
+        raise ValueError(f"union must be a segplan.Union, got {type(union).__name__}")
+    if not (isinstance(rtol, int | float) and 0.0 < rtol < 1.0):
+        raise ValueError(f"rtol must lie in (0, 1), got {rtol!r}")
+    # |dA/dx| = sqrt(1 + f'^2)
+    value, _ = romberg(lambda x: np.sqrt(1.0 + union.slope(x) ** 2), 0.0, union.x_end, rtol=rtol)
+    return float(value)
+
+
+def plan_rear_length(plan: Plan, rtol: float = 1e-10) -> float:
+    """Length of the rear point's path over a whole plan (sum of :func:`rear_length`)."""
+    if not isinstance(plan, Plan):
+        raise ValueError(f"plan must be a segplan.Plan, got {type(plan).__name__}")
+    return float(sum(rear_length(u, rtol) for u in plan.unions))
+
+
+# -- several searches on one scenario -------------------------------------------------------
+def run_searches(scenario: Scenario, searches: Mapping[str, Mapping], **common) -> list[dict]:
+    """Run :func:`segplan.plan_scenario` once per setting and summarise each outcome.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    searches : mapping of label -> keyword arguments
+        For example ``{"h'=a": {"heuristic": "a"}, "distance": {"cost": "distance"}}``.
+    **common
+        Keyword arguments given to every search (``max_expansions``, ``time_limit``, ...).
+
+    Returns
+    -------
+    list of dict
+        One record per setting, in order: ``search`` (the label), ``solved``, ``reason``
+        (``"solved"`` or :attr:`NoPathError.reason`), ``cost`` (exact LONGD [1] of the
+        plan, m), ``rear`` (:func:`plan_rear_length`, m), ``nodes`` (poses of the plan,
+        start and goal included), ``expanded``, ``generated``, ``seconds`` (planning
+        time), and ``plan`` (the :class:`Plan`). Without a plan, ``cost``, ``rear``,
+        ``nodes`` and ``plan`` are None; ``expanded``, ``generated`` and ``seconds``
+        are those of the failed search.
+
+    Raises
+    ------
+    ValueError
+        Bad arguments (also those :func:`plan_scenario` rejects).
+    """
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    if not isinstance(searches, Mapping) or not searches:
+        raise ValueError("searches must be a non-empty mapping of label -> keyword arguments")
+    records = []
+    for label, kwargs in searches.items():
+        if not isinstance(kwargs, Mapping):
+            raise ValueError(f"searches[{label!r}] must be a mapping of keyword arguments, got {kwargs!r}")
+        try:
+            p = plan_scenario(scenario, **{**common, **kwargs})
+        except NoPathError as exc:
+            records.append(
+                {
+                    "search": label,
+                    "solved": False,
+                    "reason": exc.reason,
+                    "cost": None,
+                    "rear": None,
+                    "nodes": None,
+                    "expanded": exc.expanded,
+                    "generated": exc.generated,
+                    "seconds": exc.seconds,
+                    "plan": None,
+                }
+            )
+            continue
+        records.append(
+            {
+                "search": label,
+                "solved": True,
+                "reason": "solved",
+                "cost": p.cost,
+                "rear": plan_rear_length(p),
+                "nodes": len(p.nodes),
+                "expanded": p.expanded,
+                "generated": p.generated,
+                "seconds": p.seconds,
+                "plan": p,
+            }
+        )
+    return records
+
+
+# -- shortest path of a point among convex polygons ------------------------------------------
+def _half_planes(polygons: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Unit outward normals ``(P, K, 2)`` and offsets ``(P, K)`` of counter-clockwise polygons.
+
+    A point ``x`` is inside polygon ``p`` iff ``n[p, k] . x - c[p, k] < 0`` for every ``k``.
+    Polygons with fewer edges are padded with the half-plane ``0 . x - 1 < 0``, always true.
+    """
+    K = max(len(p) for p in polygons)
+    n = np.zeros((len(polygons), K, 2))
+    c = np.ones((len(polygons), K))
+    for i, p in enumerate(polygons):
+        e = np.roll(p, -1, axis=0) - p
+        normal = np.column_stack((e[:, 1], -e[:, 0]))  # outward for counter-clockwise
+        normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
+        n[i, : len(p)] = normal
+        c[i, : len(p)] = np.einsum("ij,ij->i", normal, p)
+    return n, c
+
+
+def _crosses_interior(a: np.ndarray, b: np.ndarray, n: np.ndarray, c: np.ndarray, tol: float) -> np.ndarray:
+    """Does segment ``a[s]``-``b[s]`` enter some polygon's interior deeper than ``tol``? ``(S,)``.
+
+    Cyrus-Beck clipping: on ``p(t) = a + t (b - a)``, ``t`` in ``[0, 1]``, each signed
+    distance ``s_k(t) = n_k . p(t) - c_k`` is linear in ``t``; the segment is inside the
+    polygon shrunk by ``tol`` for the ``t`` with ``s_k(t) < -tol`` for every ``k``, an
+    interval ``(t_lo, t_hi)``, non-empty iff the segment crosses the interior. Touching a
+    vertex or running along an edge does not count.
+    """
+    s0 = np.einsum("sd,pkd->spk", a, n) - c  # (S, P, K)
+    s1 = np.einsum("sd,pkd->spk", b, n) - c
+    ds = s1 - s0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (-tol - s0) / ds  # where s_k(t) = -tol
+    rising, falling = ds > 0.0, ds < 0.0
+    t_hi = np.minimum(1.0, np.where(rising, t, np.inf).min(axis=2))
+    t_lo = np.maximum(0.0, np.where(falling, t, -np.inf).max(axis=2))
+    flat_out = np.any((ds == 0.0) & (s0 >= -tol), axis=2)  # parallel to an edge, not inside it
+    return np.any((t_lo < t_hi) & ~flat_out, axis=1)
+
+
+def _check_point(value, name: str) -> np.ndarray:
+    try:
+        p = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a point (x, y), got {value!r}") from exc
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise ValueError(f"{name} must be a finite point (x, y), got {value!r}")
+    return p
+
+
+def shortest_point_path(
+    start, goal, polygons, bounds: Sequence[float] | None = None
+) -> tuple[float, np.ndarray]:
+    """Shortest path of a point from ``start`` to ``goal`` avoiding the interiors of convex polygons.
+
+    The exact shortest path in the closure of the free space bends only at polygon
+    vertices, so it is the shortest path on the visibility graph of ``start``, ``goal``
+    and the vertices that lie in no polygon's interior and inside ``bounds`` (Dijkstra).
+    A segment is visible unless it crosses a polygon's interior by more than ``1e-9``
+    times the scene's size (touching a vertex or sliding along an edge is allowed), so
+    the length returned is a lower bound on the length of any path through the open free
+    space: the use made of it in the book.
+
+    Parameters
+    ----------
+    start, goal : (x, y)
+        Points outside every polygon's interior and inside ``bounds``.
+    polygons : sequence of (k, 2) arrays
+        Convex polygons, counter-clockwise (as :attr:`segplan.Scenario.enlarged`); they
+        may overlap each other and the walls.
+    bounds : (xmin, ymin, xmax, ymax), optional
+        A rectangle the path stays in (closed).
+
+    Returns
+    -------
+    length : float
+        ``math.inf`` if the goal cannot be reached.
+    path : ndarray (m, 2)
+        The polyline from ``start`` to ``goal`` (empty ``(0, 2)`` if unreachable).
+
+    Raises
+    ------
+    ValueError
+        Malformed points, polygons or bounds, or ``start`` / ``goal`` inside a polygon or
+        outside ``bounds``.
+    """
+    a, b = _check_point(start, "start"), _check_point(goal, "goal")
+    polys = []
+    for i, p in enumerate(polygons):
+        q = np.asarray(p, dtype=float)
+        if q.ndim != 2 or q.shape[1] != 2 or q.shape[0] < 3 or not np.all(np.isfinite(q)):
+            raise ValueError(f"polygons[{i}] must be a finite (k, 2) array with k >= 3, got shape {q.shape}")
+        polys.append(q)
+    points = [a, b] + polys
+    if bounds is not None:
+        try:
+            box = np.array([float(v) for v in bounds])
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax), got {bounds!r}") from exc
+        if box.shape != (4,) or not np.all(np.isfinite(box)) or not (box[0] < box[2] and box[1] < box[3]):
+            raise ValueError(f"bounds must be finite (xmin, ymin, xmax, ymax) with min < max, got {bounds!r}")
+        points.append(box.reshape(2, 2))
+    allpts = np.vstack(points)
+    tol = 1e-9 * max(1.0, float(np.abs(allpts).max()))
+
+    def inside_box(x: np.ndarray) -> np.ndarray:
+        if bounds is None:
+            return np.ones(len(x), dtype=bool)
+        return np.all((x >= box[:2] - tol) & (x <= box[2:] + tol), axis=1)
+
+    if polys:
+        n, c = _half_planes(polys)
+
+        def interior(x: np.ndarray) -> np.ndarray:  # inside some polygon by more than tol
+            return np.any(np.all(np.einsum("sd,pkd->spk", x, n) - c < -tol, axis=2), axis=1)
+    else:
+
+        def interior(x: np.ndarray) -> np.ndarray:
+            return np.zeros(len(x), dtype=bool)
+
+    for name, p in (("start", a), ("goal", b)):
+        if interior(p[None])[0] or not inside_box(p[None])[0]:
+            raise ValueError(f"{name} ({p[0]:g}, {p[1]:g}) lies inside a polygon or outside the bounds")
+    if not polys or not _crosses_interior(a[None], b[None], n, c, tol)[0]:
+        return float(np.hypot(*(b - a))), np.vstack((a, b))
+    verts = np.vstack(polys)
+    verts = verts[~interior(verts) & inside_box(verts)]
+    nodes = np.vstack((a, b, verts))  # 0: start, 1: goal
+    m = len(nodes)
+    i, j = np.triu_indices(m, k=1)
+    weight = np.full((m, m), np.inf)
+    for lo in range(0, i.size, 4096):  # bounded memory: (chunk, P, K) arrays
+        ii, jj = i[lo : lo + 4096], j[lo : lo + 4096]
+        free = ~_crosses_interior(nodes[ii], nodes[jj], n, c, tol)
+        w = np.hypot(*(nodes[jj] - nodes[ii]).T)
+        weight[ii[free], jj[free]] = w[free]
+        weight[jj[free], ii[free]] = w[free]
+    # Dijkstra on the dense visibility graph
+    dist = np.full(m, np.inf)
+    prev = np.full(m, -1)
+    dist[0] = 0.0
+    done = np.zeros(m, dtype=bool)
+    heap = [(0.0, 0)]
+    while heap:
+        du, u = heapq.heappop(heap)
+        if done[u]:
+            continue
+        done[u] = True
+        if u == 1:
+            break
+        better = ~done & (du + weight[u] < dist)
+        for v in np.flatnonzero(better):
+            dist[v] = du + weight[u, v]
+            prev[v] = u
+            heapq.heappush(heap, (dist[v], int(v)))
+    if not math.isfinite(dist[1]):
+        return math.inf, np.empty((0, 2))
+    route = [1]
+    while route[-1] != 0:
+        route.append(int(prev[route[-1]]))
+    return float(dist[1]), nodes[route[::-1]]
+
+
+def point_lower_bounds(scenario: Scenario) -> dict:
+    """Lower bounds on the front-wheel length (LONGD) and the rear length of any plan.
+
+    The robot's segment stays clear of ``scenario.enlarged`` and inside
+    ``scenario.free_bounds``, so B (A) cannot travel less than a point going from the
+    start's B (A) to the goal's B (A) among the same polygons (module docstring).
+
+    Returns
+    -------
+    dict
+        ``front`` and ``rear`` (m; ``math.inf`` if unreachable even for a point), and the
+        polylines ``front_path`` and ``rear_path`` ``(m, 2)``.
+    """
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    L = scenario.robot.L
+    (a0, b0), (a1, b1) = pose_segment(scenario.start, L), pose_segment(scenario.goal, L)
+    front, front_path = shortest_point_path(b0, b1, scenario.enlarged, scenario.free_bounds)
+    rear, rear_path = shortest_point_path(a0, a1, scenario.enlarged, scenario.free_bounds)
+    return {"front": front, "rear": rear, "front_path": front_path, "rear_path": rear_path}
