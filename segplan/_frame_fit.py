@@ -9,6 +9,7 @@ paper never printed it; :func:`fit_heuristic` builds ours from exact optima
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from typing import NamedTuple
@@ -56,18 +57,32 @@ class HeuristicFit(NamedTuple):
 
 
 def _exponents(degree):
-    return [
+    return list(_exponent_table(degree)[0])
+
+
+@functools.cache
+def _exponent_table(degree):
+    """``(i, j, k)`` tuples and the index arrays of their ``i``, ``j`` and ``k`` (cached)."""
+    table = tuple(
         (i, j, k)
         for i, j, k in itertools.product(range(degree + 1), range(degree // 2 + 1), range(degree + 1))
         if i + 2 * j + k <= degree
-    ]
+    )
+    index = np.array(table, dtype=np.intp).reshape(-1, 3)
+    return table, index[:, 0], index[:, 1], index[:, 2]
 
 
 def _features(phi0, phi1, ell, degree):
     s = 0.5 * (np.asarray(phi0) + np.asarray(phi1))
     q = (0.5 * (np.asarray(phi0) - np.asarray(phi1))) ** 2
     ell = np.asarray(ell)
-    return np.stack([s**i * q**j * ell**k for i, j, k in _exponents(degree)], axis=-1)
+    # every power once, then the monomials ``s**i * q**j * ell**k`` by indexing: the same
+    # products in the same order as one expression per monomial, without its 3 x 34 powers
+    _, i, j, k = _exponent_table(degree)
+    sp = np.stack([s**n for n in range(degree + 1)], axis=-1)
+    qp = np.stack([q**n for n in range(degree // 2 + 1)], axis=-1)
+    ep = np.stack([ell**n for n in range(degree + 1)], axis=-1)
+    return np.take(sp, i, axis=-1) * np.take(qp, j, axis=-1) * np.take(ep, k, axis=-1)
 
 
 def fit_heuristic(

@@ -253,10 +253,11 @@ class ConvexPolygon:
             v = validate_polygon(vertices)
         else:
             v = np.array(vertices, dtype=float)
-            area2 = float(np.sum(v[:, 0] * np.roll(v[:, 1], -1) - np.roll(v[:, 0], -1) * v[:, 1]))
+            nxt = np.concatenate((v[1:], v[:1]))  # np.roll(v, -1, axis=0), without its overhead
+            area2 = float(np.sum(v[:, 0] * nxt[:, 1] - nxt[:, 0] * v[:, 1]))
             if area2 < 0:
                 v = v[::-1].copy()
-        e = np.roll(v, -1, axis=0) - v
+        e = np.concatenate((v[1:], v[:1])) - v  # v[i+1] - v[i]
         n = np.column_stack((e[:, 1], -e[:, 0])) / np.hypot(e[:, 0], e[:, 1])[:, None]
         h = np.einsum("ij,ij->i", n, v)
         lo, hi = v.min(axis=0), v.max(axis=0)
@@ -407,6 +408,8 @@ _PAIR_I = np.array([0, 2, 0, 1, 0, 1])
 _PAIR_J = np.array([1, 3, 2, 3, 3, 2])
 _S_GRID = np.linspace(0.0, 1.0, _SWEEP_PIECES + 1)
 _S_DC = np.linspace(0.0, 1.0, _DC_PIECES + 1)
+_S_FRONT = np.linspace(0.0, 1.0, _FRONT_PIECES + 1)
+_S_FRONT.flags.writeable = False
 
 
 class _Grid:
@@ -623,12 +626,18 @@ def _sweep(sw: Sweep, V, N, H, tol):
     touch = (m.max(axis=1) <= tol) & (side.min(axis=1) <= tol) & (side.max(axis=1) >= -tol)
     if touch.any():
         return float(g.s[np.argmax(touch)]) * sw.X, None
+    # the gap is the larger of two lower bounds, along the polygon's edge normals and along
+    # the hull's axes; a piece is live only if both are <= e, so when the first certifies
+    # every piece (most pairs) the hull's axes are not needed
+    gap_poly = np.minimum(m[:-1], m[1:]).max(axis=1)
+    if not (gap_poly <= g.e).any():
+        return None, None
     if g.nrm is None:
         nrm, g.qmin, g.qmax = _hull_axes(_corners(g.A[:-1], g.B[:-1], g.A[1:], g.B[1:]))
         g.nrm = nrm.reshape(-1, 2)
     pv = (g.nrm @ V.T).reshape(-1, 6, k)
     gap = np.maximum(pv.min(axis=2) - g.qmax, g.qmin - pv.max(axis=2)).max(axis=1)
-    gap = np.maximum(gap, np.minimum(m[:-1], m[1:]).max(axis=1))
+    gap = np.maximum(gap, gap_poly)
     live = gap <= g.e
     if not live.any():
         return None, None
@@ -686,7 +695,7 @@ def _front_meets(sw: Sweep, V, N, H, tol) -> float | None:
 
     Returns an abscissa ``s`` of a (near-)contact, or ``None`` if the path is free.
     """
-    s = np.linspace(0.0, 1.0, _FRONT_PIECES + 1)
+    s = _S_FRONT
     B = sw.front(s)
     g = B @ N.T - H
     inside = np.flatnonzero(np.all(g <= tol, axis=1))
@@ -850,7 +859,7 @@ def union_free(
 # -- walls --------------------------------------------------------------------------------------
 def _front_reaches(sw: Sweep, N, H, tol) -> bool:
     """Certified: does ``max_s n_j . B(s) - h_j >= -tol`` for some wall ``j``?"""
-    s = np.linspace(0.0, 1.0, _FRONT_PIECES + 1)
+    s = _S_FRONT
     g = sw.front(s) @ N.T - H  # (n, m)
     if np.any(g >= -tol):
         return True
@@ -887,8 +896,13 @@ def union_in_bounds(union: Union | Sweep, bounds) -> bool:
     union : Union or Sweep
     bounds : (xmin, ymin, xmax, ymax)
     """
-    xmin, ymin, xmax, ymax = _bounds(bounds)
-    sw = as_sweep(union)
+    checked = _bounds(bounds)  # checked before the union, as always
+    return _union_in_bounds(as_sweep(union), checked)
+
+
+def _union_in_bounds(sw: Sweep, bounds: tuple[float, float, float, float]) -> bool:
+    """:func:`union_in_bounds` of a sweep, for bounds already checked by :func:`_bounds`."""
+    xmin, ymin, xmax, ymax = bounds
     tol = TOUCH_RTOL * (sw.size + (xmax - xmin) + (ymax - ymin) + math.hypot(sw.x0, sw.y0))
     x_lo, x_hi, y_lo, y_hi = sw.box
     # the frame box in world coordinates: centre and half extents of its bounding rectangle

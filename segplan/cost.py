@@ -67,18 +67,26 @@ def _scalar_or_array(value):
 
 
 # -- formula [1] -----------------------------------------------------------------------
+def _front_speed(X, c1, c2, c3, L):
+    """The integrand of [1] as a function of ``tau = x / X``, coefficients computed once."""
+
+    def integrand(tau):
+        x = np.multiply.outer(tau, X)
+        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x  # f'(x)
+        fpp = 2.0 * c2 + 6.0 * c3 * x  # f''(x)
+        w = 1.0 + fp * fp  # 1 + f'^2
+        return X * np.sqrt(w + (L * fpp / w) ** 2)  # [1]
+
+    return integrand
+
+
 def longd_integrand(tau, d, phi0, phi1, alpha, L):
     """Integrand of [1] on the normalised abscissa ``tau = x / X`` in ``[0, 1]``.
 
     ``X sqrt(1 + f'^2 + L^2 f''^2 / (1 + f'^2)^2)`` at ``x = X tau``; ``tau`` of shape
     ``(m,)`` against parameters of shape ``batch`` gives ``(m, *batch)``.
     """
-    X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alpha)
-    x = np.multiply.outer(tau, X)
-    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x  # f'(x)
-    fpp = 2.0 * c2 + 6.0 * c3 * x  # f''(x)
-    w = 1.0 + fp * fp  # 1 + f'^2
-    return X * np.sqrt(w + (L * fpp / w) ** 2)  # [1]
+    return _front_speed(*cubic_coefficients(d, phi0, phi1, alpha), L)(tau)
 
 
 def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False):
@@ -93,7 +101,8 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
         Romberg's error estimate, only with ``full_output=True``.
     """
     d, phi0, phi1, alpha, L = np.broadcast_arrays(d, phi0, phi1, alpha, L)
-    value, error = romberg(lambda tau: longd_integrand(tau, d, phi0, phi1, alpha, L), 0.0, 1.0, rtol=rtol)
+    integrand = _front_speed(*cubic_coefficients(d, phi0, phi1, alpha), L)  # coefficients once
+    value, error = romberg(integrand, 0.0, 1.0, rtol=rtol)
     if full_output:
         return _scalar_or_array(value), _scalar_or_array(error)
     return _scalar_or_array(value)

@@ -89,11 +89,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import collision, cost
-from .frame import optimal_alpha_intrinsic
+from .calibration import in_domain
+from .frame import heuristic_alpha, optimal_alpha_intrinsic
 from .pose import Pose
 from .romberg import RombergError
 from .union import Union, cubic_coefficients
-from .world import segment_hits_polygon, segment_in_bounds
+from .world import segment_in_bounds
 
 HALF_PI = 0.5 * math.pi
 TWO_PI = 2.0 * math.pi
@@ -106,6 +107,9 @@ LONGD_RTOL = 1e-5
 STEER_SAMPLES = 15
 _TAU = np.linspace(0.0, 1.0, 33)
 _CURV_S = np.linspace(0.0, 1.0, 17)
+#: Fewest pose pairs that :meth:`Expander.prefetch` sends to the array path of the
+#: heuristic optimal frame (fewer: the scalar path, pair by pair, is faster).
+PREFETCH_MIN_HEURISTIC = 12
 #: Positions (fractions of the union's span) sampled by the certain-hit test.
 HIT_SAMPLES = 9
 _HIT_S = np.linspace(0.0, 1.0, HIT_SAMPLES)
@@ -190,8 +194,8 @@ def outward_bisectors(polygon: np.ndarray) -> np.ndarray:
     bisectrix, pointing away from the polygon.
     """
     v = np.asarray(polygon, dtype=float)
-    a = v - np.roll(v, 1, axis=0)
-    c = v - np.roll(v, -1, axis=0)
+    a = v - np.concatenate((v[-1:], v[:-1]))  # v[i] - v[i-1] (np.roll, without its overhead)
+    c = v - np.concatenate((v[1:], v[:1]))  # v[i] - v[i+1]
     a /= np.hypot(a[:, 0], a[:, 1])[:, None]
     c /= np.hypot(c[:, 0], c[:, 1])[:, None]
     b = a + c
@@ -269,6 +273,12 @@ class ExpansionStats:
         Optimal reference systems computed in vectorised batches (:meth:`Expander.prefetch`).
     curvature_exact : int
         Unions whose curvature needed :meth:`Union.max_curvature` (the cheap bound failed).
+
+    Notes
+    -----
+    The workspace keeps its answers per union (:meth:`Workspace.facts`), so the collision
+    counters count distinct union-polygon pairs: a pair asked about again is not tested,
+    nor counted, again.
     """
 
     iterations: list = field(default_factory=list)
@@ -348,6 +358,70 @@ class Successor:
     candidate: Candidate | None = None
 
 
+def _longd_scalar(d: float, phi0: float, phi1: float, alpha: float, L: float, rtol: float) -> float:
+    """:func:`segplan.cost.longd_intrinsic` of one union in floats (the same value, faster).
+
+    Formula [2] inside its domain, else Romberg on [1].
+    """
+    if in_domain(d, phi0, phi1, alpha, L):
+        return float(cost.longd_approx_intrinsic(d, phi0, phi1, alpha, L))
+    return float(cost.longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=rtol))
+
+
+def _edge_list(vertices) -> list[tuple[float, float, float, float]]:
+    """``(x_i, y_i, n_x, n_y)`` per vertex of a counter-clockwise polygon (Python floats).
+
+    ``n = (e_y, -e_x)`` is the outward normal of the edge ``e = v_{i+1} - v_i``, as in
+    :func:`segplan.world.segment_hits_polygon`.
+    """
+    out = []
+    for i, (x, y) in enumerate(vertices):
+        nx_, ny_ = vertices[(i + 1) % len(vertices)]
+        out.append((x, y, ny_ - y, -(nx_ - x)))
+    return out
+
+
+def _segment_hits(a, b, edges) -> bool:
+    """:func:`segplan.world.segment_hits_polygon` in scalar arithmetic (the same operations).
+
+    ``edges`` from :func:`_edge_list`; touching counts as a hit (separating axes).
+    """
+    ax, ay = a
+    bx, by = b
+    for x, y, nx, ny in edges:
+        if nx * (ax - x) + ny * (ay - y) > 0.0 and nx * (bx - x) + ny * (by - y) > 0.0:
+            return False
+    dx, dy = bx - ax, by - ay
+    pos = neg = True
+    for x, y, _, _ in edges:
+        side = dx * (y - ay) - dy * (x - ax)
+        pos = pos and side > 0.0
+        neg = neg and side < 0.0
+    return not (pos or neg)
+
+
+class _Facts:
+    """What a :class:`Workspace` has established about one union (kept per union object).
+
+    Every test of a union is a deterministic function of the union (and of the fixed
+    workspace), so its answer is computed once: the search meets the same union several
+    times (the direct union of a node as its ``h'`` and at its expansion; a candidate's
+    union against the offending obstacle, the others, then all of them).
+    """
+
+    __slots__ = ("union", "sweep", "curvature", "in_bounds", "near", "hits", "samples", "cost")
+
+    def __init__(self, union: Union):
+        self.union = union  # keeps the union alive, so its id is not reused while cached
+        self.sweep = None
+        self.curvature = None
+        self.in_bounds = None
+        self.near: dict = {}  # polygon -> frame abscissa of its nearest vertex, None if rejected
+        self.hits: dict = {}  # polygon -> touched
+        self.samples = None
+        self.cost = None
+
+
 class Workspace:
     """Enlarged convex obstacles, bounds and robot limits, with cheap tests first.
 
@@ -386,12 +460,19 @@ class Workspace:
         self.max_curvature = float(max_curvature)
         self.stats = ExpansionStats()
         self.collision_stats = collision.CollisionStats()
-        self._sweeps: dict = {}
+        self._facts: dict = {}
+        self._checked_bounds = None
         # circumscribed circles (centre of the bounding box, largest vertex distance), inflated
         # by a relative margin so the broad phase never rejects a touching polygon
         self._circles = [(c.centre[0], c.centre[1], c.radius * (1.0 + 1e-9) + 1e-9) for c in self.convex]
         self._bbox = np.array([[*p.min(axis=0), *p.max(axis=0)] for p in self.polygons]).reshape(-1, 4)
         self._bisectors = [outward_bisectors(p) for p in self.polygons]
+        # vertices as Python floats, for the scalar broad phase of :meth:`colliding`
+        self._vertex_lists = [[(float(x), float(y)) for x, y in p] for p in self.polygons]
+        # and with the (unnormalised) outward normal of the edge leaving each vertex, and the
+        # bounding boxes, for the scalar :meth:`pose_free`
+        self._edge_lists = [_edge_list(v) for v in self._vertex_lists]
+        self._bbox_list = [tuple(float(b) for b in row) for row in self._bbox]
 
     # -- poses -------------------------------------------------------------------------
     def pose_free(self, pose) -> bool:
@@ -404,15 +485,27 @@ class Workspace:
         if not self.polygons:
             return True
         lo_x, hi_x, lo_y, hi_y = min(x, bx), max(x, bx), min(y, by), max(y, by)
-        bb = self._bbox
-        near = np.flatnonzero(
-            (bb[:, 0] <= hi_x) & (bb[:, 2] >= lo_x) & (bb[:, 1] <= hi_y) & (bb[:, 3] >= lo_y)
-        )
-        return not any(segment_hits_polygon(a, b, self.polygons[i]) for i in near)
+        for i, (b0, b1, b2, b3) in enumerate(self._bbox_list):
+            near = b0 <= hi_x and b2 >= lo_x and b1 <= hi_y and b3 >= lo_y
+            if near and _segment_hits(a, b, self._edge_lists[i]):
+                return False
+        return True
 
     # -- unions ------------------------------------------------------------------------
     def curvature_ok(self, u: Union) -> bool:
         """Is the rear path's curvature within the steering limit everywhere?
+
+        Cached per union; see :meth:`_curvature_ok`.
+        """
+        if not math.isfinite(self.max_curvature):
+            return True
+        f = self.facts(u)
+        if f.curvature is None:
+            f.curvature = self._curvature_ok(u)
+        return f.curvature
+
+    def _curvature_ok(self, u: Union) -> bool:
+        """:meth:`curvature_ok` without the cache.
 
         Cheap sufficient bound first: ``|kappa| <= |f''|`` and ``f''`` is linear, so
         ``max(|f''(0)|, |f''(X)|) <= kappa_max`` suffices; then a certain failure (the
@@ -446,21 +539,33 @@ class Workspace:
         self.stats.curvature_exact += 1
         return max_curvature(u) <= self.max_curvature
 
+    def facts(self, u: Union) -> _Facts:
+        """The cached answers about union ``u`` (kept on the union's identity)."""
+        f = self._facts.get(id(u))
+        if f is None or f.union is not u:
+            if len(self._facts) > 4096:
+                self._facts.clear()
+            f = _Facts(u)
+            self._facts[id(u)] = f
+        return f
+
     def sweep(self, u: Union) -> collision.Sweep:
         """The per-union data of the collision tests (cached on the union's identity)."""
-        sw = self._sweeps.get(id(u))
-        if sw is None or sw.union is not u:
-            if len(self._sweeps) > 4096:
-                self._sweeps.clear()
-            sw = collision.Sweep(u)
-            self._sweeps[id(u)] = sw
-        return sw
+        f = self.facts(u)
+        if f.sweep is None:
+            f.sweep = collision.Sweep(u)
+        return f.sweep
 
     def in_bounds(self, u: Union) -> bool:
-        """Does the swept segment stay strictly inside the bounds?"""
+        """Does the swept segment stay strictly inside the bounds? (cached per union)"""
         if self.bounds is None:
             return True
-        return collision.union_in_bounds(self.sweep(u), self.bounds)
+        f = self.facts(u)
+        if f.in_bounds is None:
+            if self._checked_bounds is None:
+                self._checked_bounds = collision._bounds(self.bounds)  # validated once
+            f.in_bounds = collision._union_in_bounds(self.sweep(u), self._checked_bounds)
+        return f.in_bounds
 
     def _samples(self, sw: collision.Sweep) -> tuple[np.ndarray, np.ndarray]:
         """World points of the swept segment: rear, middle and front at ``HIT_SAMPLES`` positions."""
@@ -490,12 +595,19 @@ class Workspace:
         """
         if not self.polygons:
             return []
+        facts = self.facts(u)
         sw = self.sweep(u)
+        known, hits = facts.near, facts.hits
         x0, x1, y0, y1 = sw.box
         c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
         candidates = range(len(self.polygons)) if only is None else only
         near = []
         for i in candidates:
+            if i in known:  # decided by the broad phase before (pairs are counted once)
+                if known[i] is not None:
+                    near.append((known[i], i))
+                continue
+            known[i] = None
             # the polygon's circumscribed circle against the frame box of the swept segment
             gx, gy, r = self._circles[i]
             dx, dy = gx - ox, gy - oy
@@ -505,27 +617,37 @@ class Workspace:
             if ex * ex + ey * ey > r * r:
                 self.stats.broad_rejections += 1
                 continue
-            # the polygon's frame bounding box against the same box
-            v = self.polygons[i]
-            vx, vy = v[:, 0] - ox, v[:, 1] - oy
-            px, py = c * vx + s * vy, c * vy - s * vx
-            if px.max() < x0 or px.min() > x1 or py.max() < y0 or py.min() > y1:
+            # the polygon's frame bounding box against the same box (scalar arithmetic:
+            # a handful of vertices)
+            px, py = [], []
+            for x, y in self._vertex_lists[i]:
+                vx, vy = x - ox, y - oy
+                px.append(c * vx + s * vy)
+                py.append(c * vy - s * vx)
+            px_min = min(px)
+            if max(px) < x0 or px_min > x1 or max(py) < y0 or min(py) > y1:
                 self.stats.broad_rejections += 1
                 continue
-            near.append((float(px.min()), i))
+            known[i] = px_min
+            near.append((px_min, i))
         if not near:
             return []
         near.sort()
         idx = [i for _, i in near]
-        wx, wy = self._samples(sw)
         out = []
         for i in idx:
-            hit = self._certain_hit(wx, wy, i)
-            if hit:
-                self.stats.certain_hits += 1
-            else:
-                self.stats.exact_checks += 1
-                hit = collision.collides(sw, self.convex[i], check=False, stats=self.collision_stats)
+            hit = hits.get(i)
+            if hit is None:
+                if facts.samples is None:
+                    facts.samples = self._samples(sw)
+                wx, wy = facts.samples
+                hit = self._certain_hit(wx, wy, i)
+                if hit:
+                    self.stats.certain_hits += 1
+                else:
+                    self.stats.exact_checks += 1
+                    hit = collision.collides(sw, self.convex[i], check=False, stats=self.collision_stats)
+                hits[i] = hit
             if hit:
                 out.append(int(i))
                 if first:
@@ -625,6 +747,8 @@ class Expander:
         self.all_obstacles = bool(all_obstacles)
         self._cache: dict = {}
         self._alphas: dict = {}
+        self._setup_cache: dict = {}
+        self._tangent_cache: dict = {}
         self._approach: tuple | None = None
 
     @property
@@ -658,9 +782,15 @@ class Expander:
         """Optimal reference systems of several pose pairs in one vectorised call.
 
         :func:`segplan.frame.optimal_alpha_intrinsic` costs far less per pair on arrays
-        than on scalars; the alphas are kept until :meth:`union` asks for them. Pairs
-        without a cubic or already known are skipped.
+        than on scalars for the exact method; the alphas are kept until :meth:`union` asks
+        for them. Pairs without a cubic or already known are skipped. The heuristic
+        method's scalar path is the faster one for fewer than
+        :data:`PREFETCH_MIN_HEURISTIC` pairs (about 20 us a pair against 0.25-0.4 ms a
+        call on arrays), so such batches are left to :meth:`union`, pair by pair. The two
+        paths agree to rounding (a few 1e-15 rad).
         """
+        if self.alpha_method == "heuristic" and len(pairs) < PREFETCH_MIN_HEURISTIC:
+            return
         keys, geos = [], []
         for p0, p1 in pairs:
             if (p0, p1, None) in self._cache or (p0, p1) in self._alphas:
@@ -673,7 +803,7 @@ class Expander:
             return
         d, _, phi0, phi1, _, _ = (np.array(v) for v in zip(*geos, strict=True))
         try:
-            alphas = optimal_alpha_intrinsic(d, phi0, phi1, self.ws.L, method=self.alpha_method)
+            alphas = self._optimal_alpha(d, phi0, phi1)
         except ValueError:
             return
         self.stats.batched += len(keys)
@@ -681,6 +811,17 @@ class Expander:
             self._alphas.clear()
         for key, a in zip(keys, np.atleast_1d(alphas), strict=True):
             self._alphas[key] = float(a)
+
+    def _optimal_alpha(self, d, phi0, phi1):
+        """:func:`segplan.frame.optimal_alpha_intrinsic` of pairs from :func:`_geometry`.
+
+        Those are valid by construction (``d > 0``, finite, a feasible interval wider than
+        ``2 ALPHA_MARGIN``), so the heuristic method skips the re-validation (the same
+        values: :func:`segplan.frame.heuristic_alpha` is what the method calls).
+        """
+        if self.alpha_method == "heuristic" and 0.0 < self.ws.L < math.inf:
+            return heuristic_alpha(d, phi0, phi1, self.ws.L)
+        return optimal_alpha_intrinsic(d, phi0, phi1, self.ws.L, method=self.alpha_method)
 
     def _make_union(self, p0, p1, frame_angle):
         geo = _geometry(p0, p1)
@@ -692,7 +833,7 @@ class Expander:
             alpha = self._alphas.pop((p0, p1), None)
             if alpha is None:
                 try:
-                    alpha = float(optimal_alpha_intrinsic(d, phi0, phi1, self.ws.L, method=self.alpha_method))
+                    alpha = float(self._optimal_alpha(d, phi0, phi1))
                 except ValueError:
                     self.stats.infeasible += 1
                     return None
@@ -733,12 +874,15 @@ class Expander:
         """LONGD of a union (formula [2] inside its domain, [1] outside: :func:`segplan.cost.longd`).
 
         ``inf`` for a near-singular cubic whose integral [1] cannot be brought to the
-        error bound (such a union also breaks the steering limit).
+        error bound (such a union also breaks the steering limit). Cached per union.
         """
-        try:
-            return float(cost.longd_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=LONGD_RTOL))
-        except RombergError:
-            return math.inf
+        f = self.ws.facts(u)
+        if f.cost is None:
+            try:
+                f.cost = _longd_scalar(u.d, u.phi0, u.phi1, u.alpha, u.L, LONGD_RTOL)
+            except RombergError:
+                f.cost = math.inf
+        return f.cost
 
     # -- intermediate nodes --------------------------------------------------------------
     def shared_frame(self, start: Pose, goal: Pose) -> float:
@@ -748,11 +892,31 @@ class Expander:
             return u.frame_angle
         return math.atan2(goal[1] - start[1], goal[0] - start[0])
 
+    def _tangents(self, polygon: int, point) -> tuple[int, int]:
+        """:func:`tangent_vertices` of obstacle ``polygon`` seen from ``point`` (cached)."""
+        key = (polygon, point[0], point[1])
+        out = self._tangent_cache.get(key)
+        if out is None:
+            if len(self._tangent_cache) > 100_000:
+                self._tangent_cache.clear()
+            out = self._tangent_cache[key] = tangent_vertices(self.ws.polygons[polygon], point)
+        return out
+
     def _setup(self, start: Pose, goal: Pose, polygon: int, side: int, subgoal: bool):
-        """Vertex, completeness, bisectrix and reference headings of a candidate."""
+        """Vertex, completeness, bisectrix and reference headings of a candidate (cached:
+        :meth:`first_estimate` and :meth:`intermediate` ask for the same one)."""
+        key = (start, goal, polygon, side, subgoal)
+        out = self._setup_cache.get(key)
+        if out is None:
+            if len(self._setup_cache) > 100_000:
+                self._setup_cache.clear()
+            out = self._setup_cache[key] = self._make_setup(start, goal, polygon, side, subgoal)
+        return out
+
+    def _make_setup(self, start: Pose, goal: Pose, polygon: int, side: int, subgoal: bool):
         poly = self.ws.polygons[polygon]
-        ccw_s, cw_s = tangent_vertices(poly, start)
-        ccw_g, cw_g = tangent_vertices(poly, goal)
+        ccw_s, cw_s = self._tangents(polygon, start)
+        ccw_g, cw_g = self._tangents(polygon, goal)
         vertex = ccw_s if side > 0 else cw_s
         complete = not subgoal and vertex == (cw_g if side > 0 else ccw_g)
         v = poly[vertex]

@@ -600,6 +600,8 @@ def heuristic_alpha(d, phi0, phi1, L, fit=None, margin=1e-3):
     margin : float
         Relative distance kept from the ends of the interval.
     """
+    if type(d) is float and type(phi0) is float and type(phi1) is float and type(L) is float:
+        return _heuristic_scalar(d / L, phi0, phi1, fit, margin)  # plain floats: the fast path
     if all(np.ndim(v) == 0 for v in (d, phi0, phi1, L)):
         return _heuristic_scalar(float(d) / float(L), float(phi0), float(phi1), fit, margin)
     d, phi0, phi1, L = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (d, phi0, phi1, L)))
@@ -656,9 +658,13 @@ def _case_b_scalar(phi0, phi1, d_over_L, fit):
     c0, c1 = min(max(a0, 0.0), fit.phi_max), min(max(a1, 0.0), fit.phi_max)
     ell = min(max(math.log(d_over_L), fit.log_ratio_range[0]), fit.log_ratio_range[1])
     s, q = 0.5 * (c0 + c1), (0.5 * (c0 - c1)) ** 2
+    # each power once (the same values as ``s**i`` etc. in the sum; same order of products)
+    sp = [s**n for n in range(fit.degree + 1)]
+    qp = [q**n for n in range(fit.degree // 2 + 1)]
+    ep = [ell**n for n in range(fit.degree + 1)]
     z = 0.0
     for c, i, j, k in _terms(fit):
-        z += c * s**i * q**j * ell**k
+        z += c * sp[i] * qp[j] * ep[k]
     return sign * (lo + (hi - lo) / (1.0 + math.exp(-min(max(z, -700.0), 700.0))))
 
 

@@ -121,6 +121,9 @@ def intrinsic(p0, p1) -> Intrinsic:
         If a pose is malformed or the two rear-axle points coincide (``d == 0``): no
         intrinsic system exists.
     """
+    fast = _intrinsic_scalar(p0, p1)
+    if fast is not None:
+        return fast
     a = as_poses(p0, "p0")
     b = as_poses(p1, "p1")
     dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
@@ -138,6 +141,35 @@ def intrinsic(p0, p1) -> Intrinsic:
     if np.ndim(d) == 0:
         return Intrinsic(*(float(v) for v in out))
     return out
+
+
+def _wrap_scalar(a: float) -> float:
+    """:func:`wrap` of one float, the same operations (``round`` halves to even like numpy's)."""
+    a = a - (2.0 * math.pi) * round(a / (2.0 * math.pi))
+    if a <= -math.pi:
+        return a + 2.0 * math.pi
+    return a - 2.0 * math.pi if a > math.pi else a
+
+
+def _intrinsic_scalar(p0, p1) -> Intrinsic | None:
+    """Fast path of :func:`intrinsic` for two plain ``(x, y, theta)`` float triples.
+
+    The same values as the array path (numpy's ``hypot`` and ``arctan2``, whose results
+    may differ from the ``math`` module's in the last bit); ``None`` for anything else,
+    including non-finite or coincident points, which the array path reports.
+    """
+    if not (type(p0) in (Pose, tuple) and type(p1) in (Pose, tuple) and len(p0) == 3 and len(p1) == 3):
+        return None
+    values = (*p0, *p1)
+    if not all(type(v) is float and math.isfinite(v) for v in values):
+        return None
+    x0, y0, t0, x1, y1, t1 = values
+    dx, dy = x1 - x0, y1 - y0
+    d = float(np.hypot(dx, dy))
+    if d <= 1e-12 * max(abs(x0), abs(y0), abs(x1), abs(y1), 1.0):
+        return None
+    psi = float(np.arctan2(dy, dx))
+    return Intrinsic(d, psi, _wrap_scalar(t0 - psi), _wrap_scalar(t1 - psi))
 
 
 def alpha_interval(phi0, phi1):

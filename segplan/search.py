@@ -53,7 +53,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .calibration import calibration
-from .cost import longd_exact
+from .cost import checked_intrinsic, longd_exact_intrinsic
 from .expansion import Expander, Workspace
 from .frame import heuristic_coefficients
 from .pose import Pose
@@ -112,7 +112,8 @@ class Plan:
     heuristic, cost_kind, version : str
         The search's settings.
     collision_checks : int
-        Union-obstacle pairs decided (broad phase or exact test).
+        Distinct union-obstacle pairs decided (broad phase or exact test; a pair asked
+        about again is answered from the workspace's cache and not counted again).
     exact_checks : int
         Calls of the exact collision test.
     iterations : tuple of int
@@ -440,7 +441,10 @@ class _Search:
     def make_plan(self, i: int, expanded: int, t0: float) -> Plan:
         ids = self.path(i)
         unions = tuple(self.union[j] for j in ids[1:])
-        exact = float(sum(longd_exact(u.p0, u.p1, u.alpha, u.L, rtol=1e-8) for u in unions))
+        # LONGD [1] of each union (Romberg, rtol 1e-8)
+        exact = 0.0
+        for u in unions:
+            exact += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=1e-8))
         st = self.ex.stats
         return Plan(
             nodes=tuple(self.poses[j] for j in ids),

@@ -1,0 +1,156 @@
+"""The planner's scalar fast paths (issue 3, speed) give the values of the general code.
+
+Each fast path is compared with the general function it replaces, on random and on
+boundary cases: bit for bit where the fast path performs the same floating-point
+operations, to rounding where it cannot (the heuristic frame's scalar and array paths).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from segplan import collision, cost, random_world
+from segplan._frame_fit import _exponents, _features
+from segplan.expansion import (
+    LONGD_RTOL,
+    Expander,
+    Workspace,
+    _edge_list,
+    _longd_scalar,
+    _segment_hits,
+)
+from segplan.frame import heuristic_alpha, heuristic_coefficients
+from segplan.pose import Pose, alpha_interval, intrinsic
+from segplan.world import segment_hits_polygon
+
+
+def _random_cases(n, seed, wide=1.5):
+    """``(d, phi0, phi1, alpha, L)`` with a feasible alpha."""
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < n:
+        d, L = float(rng.uniform(0.3, 30.0)), float(rng.uniform(0.5, 2.0))
+        p0, p1 = (float(v) for v in rng.uniform(-wide, wide, 2))
+        lo, hi = alpha_interval(p0, p1)
+        if hi - lo > 1e-6:
+            out.append((d, p0, p1, float(rng.uniform(lo, hi)), L))
+    return out
+
+
+@pytest.mark.parametrize("shape", [(), (1,), (7,), (3, 4)])
+def test_features_equal_the_monomials_bit_for_bit(shape):
+    rng = np.random.default_rng(0)
+    p0, p1, ell = rng.uniform(-1.5, 1.5, shape), rng.uniform(-1.5, 1.5, shape), rng.uniform(-2, 5, shape)
+    s, q = 0.5 * (p0 + p1), (0.5 * (p0 - p1)) ** 2
+    for degree in (3, 5):
+        ref = np.stack([s**i * q**j * ell**k for i, j, k in _exponents(degree)], axis=-1)
+        got = _features(p0, p1, ell, degree)
+        assert got.shape == ref.shape and got.flags.c_contiguous
+        assert np.array_equal(got, ref)
+        coef = rng.normal(size=ref.shape[-1])
+        assert np.array_equal(got @ coef, ref @ coef)
+
+
+def test_heuristic_scalar_path_matches_array_path():
+    fit = heuristic_coefficients()
+    cases = _random_cases(400, 1)
+    d, p0, p1, _, L = (np.array(v) for v in zip(*cases, strict=True))
+    arr = heuristic_alpha(d, p0, p1, L, fit=fit)
+    one = np.array([heuristic_alpha(a, b, c, e, fit=fit) for a, b, c, _, e in cases])
+    np_one = np.array([heuristic_alpha(np.float64(a), b, c, e, fit=fit) for a, b, c, _, e in cases])
+    assert np.array_equal(one, np_one)  # plain floats and numpy scalars: the same scalar path
+    assert np.max(np.abs(one - arr)) < 1e-12
+
+
+def test_intrinsic_fast_path_equals_array_path():
+    rng = np.random.default_rng(2)
+    specials = [math.pi, -math.pi, 3 * math.pi, 0.0, 2 * math.pi, 7 * math.pi / 2, -1e-300]
+    for i in range(3000):
+        a = [float(v) for v in rng.uniform(-50, 50, 3)]
+        b = [float(v) for v in rng.uniform(-50, 50, 3)]
+        if i % 5 == 0:
+            a[2], b[2] = float(rng.choice(specials)), float(rng.choice(specials))
+        p0, p1 = (Pose(*a), Pose(*b)) if i % 2 else (tuple(a), tuple(b))
+        fast = intrinsic(p0, p1)
+        batch = intrinsic(np.array([a]), np.array([b]))  # the array path
+        assert all(type(v) is float for v in fast)
+        assert tuple(fast) == tuple(float(v[0]) for v in batch)
+    with pytest.raises(ValueError, match="coincident"):
+        intrinsic((1.0, 2.0, 0.0), (1.0, 2.0, 1.0))
+    with pytest.raises(ValueError, match="finite"):
+        intrinsic((1.0, math.nan, 0.0), (3.0, 2.0, 1.0))
+    with pytest.raises(ValueError):
+        intrinsic((1.0, 2.0), (3.0, 2.0, 1.0))
+
+
+def test_scalar_segment_test_equals_world_segment_test():
+    rng = np.random.default_rng(3)
+    world = random_world(5, 10)
+    hits = 0
+    for poly in world.enlarged:
+        v = collision.ConvexPolygon(poly, check=False).vertices
+        edges = _edge_list([(float(x), float(y)) for x, y in v])
+        c, r = v.mean(axis=0), 2.0 * float(np.abs(v - v.mean(axis=0)).max())
+        for j in range(300):
+            a = c + rng.uniform(-r, r, 2)
+            if j % 3 == 0:  # start on a vertex or an edge: touching cases
+                k = int(rng.integers(len(v)))
+                a = v[k] + (float(rng.random()) if j % 2 else 0.0) * (v[(k + 1) % len(v)] - v[k])
+            th = float(rng.uniform(-math.pi, math.pi))
+            A = (float(a[0]), float(a[1]))
+            B = (A[0] + 1.2 * math.cos(th), A[1] + 1.2 * math.sin(th))
+            expected = segment_hits_polygon(A, B, v)
+            assert _segment_hits(A, B, edges) == expected
+            hits += expected
+    assert hits > 100
+
+
+def test_scalar_longd_equals_cost_module_bit_for_bit():
+    for d, p0, p1, alpha, L in _random_cases(300, 4):
+        for rtol in (LONGD_RTOL, 1e-8):
+            assert _longd_scalar(d, p0, p1, alpha, L, rtol) == float(
+                cost.longd_intrinsic(d, p0, p1, alpha, L, rtol=rtol)
+            )
+
+
+def test_workspace_caches_give_the_uncached_answers():
+    world = random_world(7, 10)
+    ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+    ex = Expander(ws)
+    rng = np.random.default_rng(5)
+    n_polygons = len(ws.polygons)
+    checked = 0
+    for _ in range(60):
+        p0 = Pose(float(rng.uniform(1, 29)), float(rng.uniform(1, 19)), float(rng.uniform(-3, 3)))
+        u = ex.union(p0, world.goal)
+        if u is None:
+            continue
+        checked += 1
+        fresh = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+        only = [int(i) for i in rng.permutation(n_polygons)[: int(rng.integers(1, n_polygons + 1))]]
+        # the same questions twice (the second time from the cache) and in another order
+        for _ in range(2):
+            assert ws.colliding(u, only=only) == fresh.colliding(u, only=only)
+            assert ws.colliding(u, first=False) == fresh.colliding(u, first=False)
+            assert ws.colliding(u) == fresh.colliding(u)
+            assert ws.curvature_ok(u) == fresh._curvature_ok(u)
+            assert ws.in_bounds(u) == collision.union_in_bounds(u, world.free_bounds)
+            truth = [i for i in range(n_polygons) if collision.collides(u, ws.convex[i], check=False)]
+            assert ws.colliding(u, first=False) == sorted(truth, key=lambda i: ws.facts(u).near[i])
+            expected = cost.longd_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, LONGD_RTOL)
+            assert ex.link_cost(u) == float(expected)
+    assert checked > 20
+
+
+def test_small_heuristic_batches_use_the_scalar_path():
+    world = random_world(3, 10)
+    ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+    ex = Expander(ws)
+    pairs = [(Pose(2.0 + i, 3.0, 0.1 * i), world.goal) for i in range(4)]
+    ex.prefetch(pairs)
+    assert ex.stats.batched == 0  # left to union(), pair by pair
+    for p0, p1 in pairs:
+        u = ex.union(p0, p1)
+        geo = intrinsic(p0, p1)
+        assert u.alpha == pytest.approx(heuristic_alpha(geo.d, geo.phi0, geo.phi1, ws.L), abs=1e-12)
