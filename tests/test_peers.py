@@ -1,0 +1,132 @@
+"""The OMPL comparison harness (benchmarks/peers.py): inputs, the shared validity check, a smoke run."""
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:  # benchmarks/ is not an installed package
+    sys.path.insert(0, str(ROOT))
+
+from benchmarks import peers  # noqa: E402
+
+needs_ompl = pytest.mark.skipif(
+    not peers.ompl_available(),
+    reason="the OMPL Python bindings are not installed (pip install 'segplan[peers]')",
+)
+
+
+def test_ompl_heading_is_strictly_inside_minus_pi_pi():
+    assert peers.ompl_heading(math.pi) == -math.pi
+    assert peers.ompl_heading(-math.pi) == -math.pi
+    assert peers.ompl_heading(3 * math.pi) == -math.pi
+    assert peers.ompl_heading(0.25) == pytest.approx(0.25)
+    assert peers.ompl_heading(-1e-20) == pytest.approx(0.0)  # % may round up to 2 pi itself
+    for a in np.linspace(-20.0, 20.0, 4001):
+        w = peers.ompl_heading(a)
+        assert -math.pi <= w < math.pi
+        assert math.isclose(math.cos(w), math.cos(a), abs_tol=1e-12)
+        assert math.isclose(math.sin(w), math.sin(a), abs_tol=1e-12)
+    with pytest.raises(ValueError, match="theta"):
+        peers.ompl_heading(math.inf)
+
+
+def test_seed_zero_is_refused():
+    with pytest.raises(ValueError, match="seed"):
+        peers.check_seed(0)
+    with pytest.raises(ValueError, match="seed"):
+        peers.check_seed(True)
+    assert peers.check_seed(np.int64(3)) == 3
+
+
+@pytest.mark.parametrize("name", peers.shipped_scenarios())
+def test_segment_validity_answers_as_scenario_is_free(name):
+    """The filtered check equals Scenario.is_free (segplan's own tests), also near contact."""
+    sc = peers.load(name)
+    check = peers.SegmentValidity(sc)
+    rng = np.random.default_rng(7)
+    xmin, ymin, xmax, ymax = sc.bounds
+    n = 600
+    poses = np.column_stack(
+        (rng.uniform(xmin, xmax, n), rng.uniform(ymin, ymax, n), rng.uniform(-math.pi, math.pi, n))
+    )
+    near = []  # A or B just on either side of an enlarged vertex or of a free-bound wall
+    for poly in sc.enlarged:
+        for v in poly:
+            for eps in (-1e-7, 0.0, 1e-7, 1e-3):
+                th = rng.uniform(-math.pi, math.pi)
+                near.append((v[0] + eps, v[1] + eps, th))
+                near.append((v[0] - sc.L * math.cos(th) + eps, v[1] - sc.L * math.sin(th) - eps, th))
+    fx0, fy0, fx1, fy1 = sc.free_bounds
+    for eps in (-1e-7, 0.0, 1e-7, 1e-3):
+        near += [(fx0 + eps, 0.5 * (fy0 + fy1), 0.0), (fx1 - sc.L - eps, fy0 + 1.0, 0.0)]
+        near += [(fx0 + 1.0, fy1 - eps, -0.5 * math.pi), (fx0 + 1.0, fy0 + sc.L + eps, -0.5 * math.pi)]
+    for p in list(map(tuple, poses)) + near:
+        assert check(*p) == sc.is_free(p), p
+    assert check.calls == len(poses) + len(near)
+
+
+def test_goal_table_logic():
+    rows = [
+        {"scenario": "s", "method": "segplan h'=a", "space": "segplan", "budget": math.nan, "seed": 0,
+         "solved": True, "valid": True, "front_length": 10.0, "seconds": 0.05},
+        {"scenario": "s", "method": "BITstar", "space": "dubins", "budget": 5.0, "seed": 1,
+         "solved": True, "valid": True, "front_length": 11.0, "seconds": 5.0},
+        {"scenario": "s", "method": "RRTstar", "space": "dubins", "budget": 5.0, "seed": 1,
+         "solved": True, "valid": False, "front_length": 9.0, "seconds": 5.0},  # invalid: ignored
+        {"scenario": "t", "method": "segplan h'=a", "space": "segplan", "budget": math.nan, "seed": 0,
+         "solved": True, "valid": True, "front_length": 10.0, "seconds": 0.2},
+        {"scenario": "t", "method": "BITstar", "space": "dubins", "budget": 5.0, "seed": 1,
+         "solved": True, "valid": True, "front_length": 9.5, "seconds": 5.0},
+    ]  # fmt: skip
+    g = peers.goal_table(pd.DataFrame(rows), 5.0).set_index("scenario")
+    assert g.loc["s", "ompl_best_front"] == 11.0 and g.loc["s", "ompl_planner"] == "BITstar"
+    assert bool(g.loc["s", "goal_met"]) and g.loc["s", "time_ratio"] == pytest.approx(100.0)
+    assert (
+        not bool(g.loc["t", "shorter"]) and not bool(g.loc["t", "fast"]) and not bool(g.loc["t", "goal_met"])
+    )
+
+
+def test_configs():
+    full = peers.full_config()
+    assert full.scenarios == peers.shipped_scenarios()
+    dubins = [j for j in full.jobs() if j[4] == "dubins"]
+    assert len(dubins) == len(full.scenarios) * 3 * 3 * 5
+    assert len(full.key()) == 16 and full.key() == peers.full_config().key()
+    assert peers.quick_config().key() != full.key()
+
+
+@needs_ompl
+def test_ompl_smoke_run_one_scenario():
+    """One scenario, a tiny budget, one seed: the harness runs end to end, paths measured."""
+    cfg = peers.quick_config(("single_obstacle",))
+    result = peers.run_study(cfg)
+    t = result.table
+    assert set(t["method"]) == {"segplan h'=a", "RRTstar"}
+    assert set(t["space"]) == {"segplan", "dubins", "reedsshepp"}
+    ours = t[t["space"] == "segplan"].iloc[0]
+    assert ours["solved"] and ours["valid"]
+    assert ours["front_length"] == pytest.approx(ours["plan_cost"], rel=1e-4)  # measured = LONGD [1]
+    assert ours["curvature_jumps"] >= 0 and ours["reversals"] == 0
+    for _, r in t[t["space"] != "segplan"].iterrows():
+        assert r["checks"] > 0 and r["seconds"] > 0
+        assert "Exact" in r["status"] or "Approximate" in r["status"] or "Timeout" in r["status"]
+        if r["solved"] and r["space"] == "dubins":
+            assert r["reversals"] == 0
+            assert r["rear_length"] == pytest.approx(r["ompl_cost"], rel=1e-4)
+    assert "nanobind" not in " ".join(t["messages"])
+
+
+@needs_ompl
+def test_ompl_accepts_a_heading_of_pi():
+    """turn_around's goal heads at exactly +pi: normalised, the run is a valid problem."""
+    sc = peers.load("turn_around")
+    assert sc.goal.theta == math.pi
+    row = peers.solve_ompl_isolated(sc, "BITstar", 0.3, 1)
+    assert "Invalid" not in row["status"], row["status"]
+    if row["solved"]:
+        assert row["valid"] and row["reversals"] == 0
