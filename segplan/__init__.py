@@ -13,6 +13,7 @@ from .cost import longd, longd_approx, longd_exact
 from .frame import optimal_alpha, optimal_alpha_intrinsic
 from .metrics import PathMetrics, measure_path, measure_scenario_path, plan_poses
 from .pose import Pose
+from .refine import Refinement, refine
 from .search import NoPathError, Plan, plan, plan_scenario
 from .union import Union
 from .world import Robot, Scenario, ScenarioError, load_scenario, make_scenario, random_world, save_scenario
@@ -26,3 +27,4 @@ __all__ += ["NoPathError", "Plan", "plan", "plan_scenario"]
 __all__ += ["longd", "longd_approx"]
 __all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses"]
 __all__ += ["optimal_alpha", "optimal_alpha_intrinsic"]
+__all__ += ["Refinement", "refine"]

@@ -108,6 +108,31 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
     return _scalar_or_array(value)
 
 
+#: Nodes and weights of the Gauss-Legendre rule of :func:`longd_gauss_intrinsic`, on [0, 1].
+_GAUSS_NODES = 24
+_GL_T, _GL_W = np.polynomial.legendre.leggauss(_GAUSS_NODES)
+_GL_T, _GL_W = 0.5 * (_GL_T + 1.0), 0.5 * _GL_W
+
+
+def longd_gauss_intrinsic(d, phi0, phi1, alpha, L):
+    """Formula [1] by a fixed 24-point Gauss-Legendre rule (vectorised, no error estimate).
+
+    Not the paper's: a cheap quadrature of the same integrand as :func:`longd_exact_intrinsic`,
+    for the many trial links of :func:`segplan.refine` (screening and comparing them in
+    one objective). No error bound; measured against Romberg at ``rtol=1e-12`` on 9,800
+    random unions within the steering limit ``|kappa| <= 1/L`` (``d/L`` in [0.5, 20],
+    headings to +-80 deg, heuristic frame): relative error at most 2.5e-5, median 7e-16
+    (tests/test_refine.py checks it against ``scipy.integrate.quad``). Sharper cubics
+    integrate less accurately: use :func:`longd_exact_intrinsic` where a bound matters.
+
+    The caller guarantees valid inputs (see :func:`checked_intrinsic`).
+    """
+    d, phi0, phi1, alpha, L = np.broadcast_arrays(d, phi0, phi1, alpha, L)
+    integrand = _front_speed(*cubic_coefficients(d, phi0, phi1, alpha), L)
+    value = np.tensordot(_GL_W, integrand(_GL_T), axes=1)  # sum_k w_k F(tau_k)
+    return _scalar_or_array(value)
+
+
 def longd_exact(p0, p1, alpha, L, rtol=1e-10):
     """LONGD by formula [1], Romberg integration to relative error ``rtol``.
 

@@ -57,6 +57,7 @@ from .cost import checked_intrinsic, longd_exact_intrinsic
 from .expansion import Expander, Workspace
 from .frame import heuristic_coefficients
 from .pose import Pose
+from .refine import refine_with
 from .union import Union
 from .world import Robot, Scenario, make_scenario
 
@@ -119,7 +120,10 @@ class Plan:
     iterations : tuple of int
         Iterates used by every successful vertex candidate generated during the search.
     kinds : tuple of str
-        Kind of each node: ``"start"``, ``"vertex"``, ``"turn"``, ``"goal"``.
+        Kind of each node: ``"start"``, ``"vertex"``, ``"turn"``, ``"goal"`` (and
+        ``"refined"`` for a node added or moved by :func:`segplan.refine`).
+    refinement : segplan.refine.Refinement or None
+        What :func:`segplan.refine` changed (None: the search's plan as found).
     """
 
     nodes: tuple
@@ -136,6 +140,7 @@ class Plan:
     exact_checks: int
     iterations: tuple
     kinds: tuple
+    refinement: object = None
 
     def to_dict(self) -> dict:
         """Plain-JSON summary (angles in degrees, like scenario files)."""
@@ -297,6 +302,7 @@ def plan_scenario(
     time_limit: float = 10.0,
     max_turn_chain: int = 4,
     expander: dict | None = None,
+    refine: bool | dict = False,
 ) -> Plan:
     """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
 
@@ -326,6 +332,10 @@ def plan_scenario(
         make a full circle. Bounds the part of the graph built from turn states.
     expander : dict, optional
         Further keyword arguments of :class:`Expander` (``max_iterations``, ``r0``, ...).
+    refine : bool or dict
+        Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
+        splits, local moves of the nodes), with default options (True) or these
+        keyword arguments (a dict). ``Plan.seconds`` then counts search and refinement.
 
     Returns
     -------
@@ -335,6 +345,8 @@ def plan_scenario(
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     _check_choice(heuristic, HEURISTICS, "heuristic")
     _check_choice(cost, COSTS, "cost")
+    if not (isinstance(refine, bool) or isinstance(refine, dict)):
+        raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
     if isinstance(max_expansions, bool) or int(max_expansions) != max_expansions or max_expansions < 1:
         raise ValueError(f"max_expansions must be an integer >= 1, got {max_expansions!r}")
     if isinstance(max_turn_chain, bool) or int(max_turn_chain) != max_turn_chain or max_turn_chain < 0:
@@ -361,7 +373,10 @@ def plan_scenario(
     ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     ex = Expander(ws, version=version, alpha_method=alpha_method, **(expander or {}))
     search = _Search(ex, scenario.start, scenario.goal, heuristic, cost, ds_over_L, robot, max_turn_chain)
-    return search.run(int(max_expansions), float(time_limit), t0)
+    found = search.run(int(max_expansions), float(time_limit), t0)
+    if refine is False:
+        return found
+    return refine_with(found, ex, **({} if refine is True else refine))
 
 
 class _Search:

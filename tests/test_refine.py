@@ -1,0 +1,204 @@
+"""Refinement of a found plan (beyond the paper, issue 5): segplan.refine.
+
+Oracles: every refined plan passes the search's full check (dense shapely sampling of the
+swept segment, exact curvature maximum, forward motion, exact end poses, cost = Romberg's
+[1]); its cost is never above the search's; the screening filter never rejects a link
+that the exact test accepts; the Gauss-Legendre link cost agrees with scipy's quad.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import integrate
+from test_search import check_plan
+
+import segplan
+from segplan import NoPathError, Refinement, plan_scenario, random_world, refine
+from segplan.cost import longd_gauss_intrinsic
+from segplan.expansion import Workspace
+from segplan.frame import heuristic_alpha
+from segplan.pose import Pose
+from segplan.refine import certain_failures
+from segplan.union import Union, cubic_coefficients
+
+SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
+NAMES = sorted(p.stem for p in SCENARIOS.glob("*.json"))
+
+
+@pytest.fixture(scope="module")
+def plans():
+    out = {}
+    for name in NAMES:
+        sc = segplan.load_scenario(SCENARIOS / f"{name}.json")
+        found = plan_scenario(sc)
+        out[name] = (sc, found, refine(found, sc))
+    return out
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_refined_plans_are_valid_and_not_longer(plans, name):
+    sc, found, refined = plans[name]
+    check_plan(refined, sc)
+    info = refined.refinement
+    assert isinstance(info, Refinement)
+    assert info.cost_before == found.cost and info.cost_after == refined.cost
+    assert refined.cost <= found.cost
+    assert len(refined.kinds) == len(refined.nodes) == info.nodes_after
+    assert refined.kinds[0] == "start" and refined.kinds[-1] == "goal"
+    # moved or added nodes are marked, the others are the search's own
+    for pose, kind in zip(refined.nodes, refined.kinds, strict=True):
+        assert (kind == "refined") == (pose not in found.nodes)
+    assert refined.seconds >= found.seconds
+    assert found.refinement is None
+
+
+def test_refinement_shortens_the_paper_examples(plans):
+    """Figs. 5 and 6: the refined front-wheel path is shorter by more than a per cent."""
+    for name in ("fig5_example1", "fig6_example2"):
+        _, found, refined = plans[name]
+        assert refined.cost < 0.99 * found.cost, name
+
+
+def test_deterministic_and_same_as_plan_option(plans):
+    sc, found, refined = plans["fig6_example2"]
+    again = refine(found, sc)
+    assert again.nodes == refined.nodes and again.cost == refined.cost
+    # through plan_scenario, with the search's own caches: the same chain
+    direct = plan_scenario(sc, refine=True)
+    assert direct.nodes == refined.nodes and direct.cost == refined.cost
+    assert direct.refinement is not None
+
+
+def test_rounds_zero_only_shortcuts(plans):
+    sc, found, _ = plans["fig6_example2"]
+    short = refine(found, sc, rounds=0)
+    assert set(short.nodes) <= set(found.nodes)
+    assert short.refinement.splits == short.refinement.moves == 0
+    assert short.cost <= found.cost
+
+
+@settings(max_examples=12)
+@given(seed=st.integers(0, 10_000), n=st.integers(2, 6))
+def test_random_worlds(seed, n):
+    sc = random_world(seed, n)
+    try:
+        found = plan_scenario(sc)
+    except NoPathError:
+        return
+    refined = refine(found, sc)
+    check_plan(refined, sc)
+    assert refined.cost <= found.cost
+
+
+def test_bad_input(plans):
+    sc, found, refined = plans["fig5_example1"]
+    other = segplan.load_scenario(SCENARIOS / "empty_room.json")
+    with pytest.raises(ValueError, match="plan must be"):
+        refine("plan", sc)
+    with pytest.raises(ValueError, match="scenario must be"):
+        refine(found, "fig5")
+    with pytest.raises(ValueError, match="start to its goal"):
+        refine(found, other)
+    with pytest.raises(ValueError, match="already refined"):
+        refine(refined, sc)
+    for kw in ({"rounds": -1}, {"rounds": 1.5}, {"split": 0}, {"min_step": math.nan}, {"max_sweeps": True}):
+        with pytest.raises(ValueError, match=next(iter(kw))):
+            refine(found, sc, **kw)
+    with pytest.raises(ValueError, match="must not exceed"):
+        refine(found, sc, first_step=0.1, min_step=0.2)
+    with pytest.raises(ValueError, match="refine must be"):
+        plan_scenario(sc, refine="yes")
+    # the same start and goal, another floor where the plan's unions are not free
+    blocked = segplan.make_scenario(
+        sc.robot,
+        sc.start,
+        sc.goal,
+        [
+            *sc.obstacles,
+            *(
+                u.rear(3)[1] + np.array([[-0.3, -0.3], [0.3, -0.3], [0.3, 0.3], [-0.3, 0.3]])
+                for u in found.unions[:1]
+            ),
+        ],
+        sc.bounds,
+    )
+    with pytest.raises(ValueError, match="not free in this scenario"):
+        refine(found, blocked)
+
+
+# -- the Gauss-Legendre link cost ------------------------------------------------------
+@settings(max_examples=200)
+@given(
+    d=st.floats(0.5, 20.0),
+    phi0=st.floats(-1.4, 1.4),
+    phi1=st.floats(-1.4, 1.4),
+)
+def test_gauss_cost_agrees_with_quad_within_the_steering_limit(d, phi0, phi1):
+    L = 1.0
+    lo = -math.pi / 2 - min(phi0, phi1, 0.0)
+    hi = math.pi / 2 - max(phi0, phi1, 0.0)
+    if hi - lo < 0.01:
+        return
+    alpha = heuristic_alpha(d, phi0, phi1, L)
+    u = Union(Pose(0.0, 0.0, phi0), Pose(d, 0.0, phi1), alpha, L)
+    if u.max_curvature() > 1.0 / L:  # outside the steering limit the rule is not claimed
+        return
+    X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alpha)
+
+    def speed(x):
+        fp = c1 + (2 * c2 + 3 * c3 * x) * x
+        w = 1 + fp * fp
+        return math.sqrt(w + (L * (2 * c2 + 6 * c3 * x) / w) ** 2)
+
+    ref = integrate.quad(speed, 0.0, X, epsabs=0.0, epsrel=1e-12, limit=400)[0]
+    assert longd_gauss_intrinsic(d, phi0, phi1, alpha, L) == pytest.approx(ref, rel=5e-5)
+
+
+def test_gauss_cost_is_vectorised():
+    d = np.array([2.0, 5.0, 9.0])
+    phi = np.array([0.3, -0.2, 0.0])
+    alpha = heuristic_alpha(d, phi, -phi, 1.0)
+    vec = longd_gauss_intrinsic(d, phi, -phi, alpha, 1.0)
+    one = [
+        longd_gauss_intrinsic(float(a), float(b), float(-b), float(c), 1.0)
+        for a, b, c in zip(d, phi, alpha, strict=True)
+    ]
+    assert np.allclose(vec, one, rtol=1e-14)
+    assert isinstance(one[0], float)
+
+
+# -- the screening filter is sound -------------------------------------------------------
+@settings(max_examples=60)
+@given(seed=st.integers(0, 10_000))
+def test_certain_failures_never_reject_a_free_link(seed):
+    """Every link flagged as a certain failure is refused by the exact tests."""
+    sc = random_world(seed % 50, 6)
+    ws = Workspace(sc.enlarged, sc.robot.L, sc.free_bounds, sc.robot.max_curvature)
+    rng = np.random.default_rng(seed)
+    xmin, ymin, xmax, ymax = sc.free_bounds
+    n = 60
+    A = np.column_stack(
+        (rng.uniform(xmin, xmax, n), rng.uniform(ymin, ymax, n), rng.uniform(-np.pi, np.pi, n))
+    )
+    step = rng.uniform(0.5, 6.0, n)
+    ang = A[:, 2] + rng.uniform(-0.8, 0.8, n)
+    B = np.column_stack(
+        (A[:, 0] + step * np.cos(ang), A[:, 1] + step * np.sin(ang), A[:, 2] + rng.uniform(-1.2, 1.2, n))
+    )
+    dx, dy = B[:, 0] - A[:, 0], B[:, 1] - A[:, 1]
+    d, psi = np.hypot(dx, dy), np.arctan2(dy, dx)
+    phi0 = np.angle(np.exp(1j * (A[:, 2] - psi)))
+    phi1 = np.angle(np.exp(1j * (B[:, 2] - psi)))
+    keep = (np.pi / 2 - np.maximum(np.maximum(phi0, phi1), 0)) - (
+        -np.pi / 2 - np.minimum(np.minimum(phi0, phi1), 0)
+    ) > 0.02
+    A, B, d, psi, phi0, phi1 = A[keep], B[keep], d[keep], psi[keep], phi0[keep], phi1[keep]
+    alpha = heuristic_alpha(d, phi0, phi1, sc.robot.L)
+    bad = certain_failures(ws, A, psi - alpha, *cubic_coefficients(d, phi0, phi1, alpha))
+    for k in np.flatnonzero(bad):
+        u = Union(Pose(*A[k]), Pose(*B[k]), float(alpha[k]), sc.robot.L)
+        assert not ws.union_free(u), k
