@@ -35,14 +35,17 @@ The peers' problem, made as equal as OMPL allows
   because OMPL seeds its generators only before the first one is created in a process.
   Deterministic given the seed is the *sequence* of samples; how many of them fit in a
   budget depends on the machine and its load, so results vary from run to run.
-- **segplan**: :func:`segplan.plan_scenario` with heuristics a, b, c (default options);
+- **segplan**: :func:`segplan.plan_scenario` with heuristics a, b, c (default options),
+  each as the paper's search finds it and refined by :func:`segplan.refine` (beyond the
+  paper: shortcuts, splits and local moves of the nodes; ``+refine`` in ``method``);
   time: the median wall time of :data:`SEGPLAN_REPEATS` plans in one process, after the
   process's one-time set-up (the first-use fit of the heuristic frame's coefficients,
   :func:`segplan.frame.heuristic_coefficients`, about a second, measured and reported
   apart, like OMPL's library load).
 
 Goal (issue 5): on each scenario segplan's front-wheel length at most that of the best
-OMPL result at 5 s, found in under 1/50 of that time (0.1 s).
+OMPL result at 5 s, found in under 1/50 of that time (0.1 s). :func:`goal_table` judges
+the refined planner by default (``refine=False``: the paper's search alone).
 
 OMPL's sharp edges met (ompl 2.0.1 wheel)
 ------------------------------------------
@@ -113,7 +116,7 @@ SEGPLAN_REPEATS = 5
 #: The goal's time ratio: segplan within 1/50 of OMPL's budget.
 TIME_RATIO = 50.0
 #: Bump when the harness changes in a way that invalidates cached results.
-HARNESS_VERSION = 1
+HARNESS_VERSION = 2
 _MARK = "@@peers@@"
 
 
@@ -434,8 +437,18 @@ def warm_up() -> float:
     return time.perf_counter() - t0
 
 
-def solve_segplan(scenario, heuristic: str = "a", repeats: int = SEGPLAN_REPEATS, step: float = STEP) -> dict:
-    """segplan on a scenario: a row like :func:`solve_ompl`'s (``method`` ``"segplan h'=a"``).
+def segplan_method(heuristic: str = "a", refine: bool = False) -> str:
+    """The ``method`` label of segplan's rows: ``"segplan h'=a"``, ``"segplan h'=a +refine"``."""
+    return f"segplan h'={heuristic}" + (" +refine" if refine else "")
+
+
+def solve_segplan(
+    scenario, heuristic: str = "a", repeats: int = SEGPLAN_REPEATS, step: float = STEP, refine: bool = False
+) -> dict:
+    """segplan on a scenario: a row like :func:`solve_ompl`'s (``method``: :func:`segplan_method`).
+
+    ``refine=True`` plans with :func:`segplan.refine` after the search (beyond the
+    paper; ``seconds`` counts both).
 
     ``seconds`` is the median wall time (``Plan.seconds``) of ``repeats`` plans (the plan
     itself is deterministic) after one untimed plan; call :func:`warm_up` once per
@@ -448,16 +461,16 @@ def solve_segplan(scenario, heuristic: str = "a", repeats: int = SEGPLAN_REPEATS
         raise ValueError(f"repeats must be an integer >= 1, got {repeats!r}")
     row = {
         "scenario": sc.name,
-        "method": f"segplan h'={heuristic}",
+        "method": segplan_method(heuristic, refine),
         "space": "segplan",
         "budget": math.nan,
         "seed": 0,
     }
     times, plan = [], None
     try:
-        segplan.plan_scenario(sc, heuristic=heuristic)  # untimed: per-scenario caches (d_s)
+        segplan.plan_scenario(sc, heuristic=heuristic, refine=refine)  # untimed: per-scenario caches (d_s)
         for _ in range(repeats):
-            plan = segplan.plan_scenario(sc, heuristic=heuristic)
+            plan = segplan.plan_scenario(sc, heuristic=heuristic, refine=refine)
             times.append(plan.seconds)
     except segplan.NoPathError as exc:
         times.append(exc.seconds)
@@ -495,11 +508,13 @@ class Runs:
 
 @dataclass(frozen=True)
 class StudyConfig:
-    """What a study runs: segplan on ``scenarios`` with ``heuristics``, and OMPL ``blocks``."""
+    """What a study runs: segplan on ``scenarios`` with ``heuristics`` (each as found by the
+    search and, if ``True`` is in ``refine``, refined), and OMPL ``blocks``."""
 
     scenarios: tuple[str, ...]
     blocks: tuple[Runs, ...]
     heuristics: tuple[str, ...] = HEURISTICS
+    refine: tuple[bool, ...] = (False, True)
     resolution: float = RESOLUTION
     step: float = STEP
     segplan_repeats: int = SEGPLAN_REPEATS
@@ -577,9 +592,10 @@ def run_study(
     for name in config.scenarios:
         sc = load(name)
         for h in config.heuristics:
-            rows.append(solve_segplan(sc, h, config.segplan_repeats, config.step))
-            if progress:
-                progress(f"{name} segplan h'={h}")
+            for refine in config.refine:
+                rows.append(solve_segplan(sc, h, config.segplan_repeats, config.step, refine))
+                if progress:
+                    progress(f"{name} {segplan_method(h, refine)}")
     todo = config.jobs()
 
     def one(job):
@@ -662,9 +678,11 @@ def budget_table(table: pd.DataFrame, space: str = "dubins") -> pd.DataFrame:
     return out.reset_index()
 
 
-def goal_table(table: pd.DataFrame, budget: float = 5.0, heuristic: str = "a") -> pd.DataFrame:
-    """The issue's goal per scenario: segplan (``heuristic``) against the best valid Dubins
-    run at ``budget`` (over planners and seeds), by front-wheel length.
+def goal_table(
+    table: pd.DataFrame, budget: float = 5.0, heuristic: str = "a", refine: bool = True
+) -> pd.DataFrame:
+    """The issue's goal per scenario: segplan (``heuristic``, refined or as found) against
+    the best valid Dubins run at ``budget`` (over planners and seeds), by front-wheel length.
 
     Columns: ``segplan_front``, ``segplan_ms``, ``ompl_best_front``, ``ompl_planner``,
     ``ompl_runs`` (valid runs at that budget), ``length_ratio`` (segplan / OMPL),
@@ -672,7 +690,7 @@ def goal_table(table: pd.DataFrame, budget: float = 5.0, heuristic: str = "a") -
     ``goal_met``. Scenarios without OMPL runs at ``budget`` are left out.
     """
     rows = []
-    ours = table[table["method"] == f"segplan h'={heuristic}"].set_index("scenario")
+    ours = table[table["method"] == segplan_method(heuristic, refine)].set_index("scenario")
     peers = table[(table["space"] == "dubins") & (table["budget"] == budget)]
     for name, runs in peers.groupby("scenario", sort=True):
         valid = runs[runs["valid"] == True]  # noqa: E712
@@ -707,12 +725,12 @@ def goal_table(table: pd.DataFrame, budget: float = 5.0, heuristic: str = "a") -
 
 
 def summary_table(table: pd.DataFrame) -> pd.DataFrame:
-    """Per scenario: each segplan heuristic and, per budget, the best valid Dubins run (front length, ms)."""
+    """Per scenario: each segplan variant and, per budget, the best valid Dubins run (front length, ms)."""
     rows = []
     for name, t in table.groupby("scenario", sort=True):
         row = {"scenario": name}
         for _, r in t[t["space"] == "segplan"].iterrows():
-            h = r["method"].split("=")[-1]
+            h = r["method"].removeprefix("segplan h'=")
             row[f"segplan {h} front"] = r["front_length"]
             row[f"segplan {h} ms"] = 1e3 * r["seconds"]
         d = t[(t["space"] == "dubins") & (t["valid"] == True)]  # noqa: E712
@@ -766,8 +784,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(budget_table(t).to_string(index=False))
         print()
         for b in sorted(set(t.loc[t["space"] == "dubins", "budget"])):
-            print(f"goal at {b:g} s:")
-            print(goal_table(t, b).to_string(index=False))
+            for refine in (False, True):
+                print(f"goal at {b:g} s, {segplan_method('a', refine)}:")
+                print(goal_table(t, b, refine=refine).to_string(index=False))
     bad = t[(t["solved"] == True) & (t["valid"] == False)]  # noqa: E712
     print(f"\ninvalid paths (solved but failing the dense oracle): {len(bad)}")
     if len(bad):

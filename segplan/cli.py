@@ -1,4 +1,4 @@
-"""Command line: ``segplan plan SCENARIO.json [--heuristic a|b|c] [--out plan.png] [--json]``.
+"""Command line: ``segplan plan SCENARIO.json [--heuristic a|b|c] [--refine] [--out plan.png] [--json]``.
 
 Plans a forward-only path of the oriented-segment robot (Campoy et al., 1989) on a
 scenario file (see :mod:`segplan.world` for the format), prints its cost (LONGD, the
@@ -94,6 +94,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="reference systems of intermediate nodes (Fig. 4): b one optimal frame per piece "
         "(default), a one frame shared by both pieces",
     )
+    p.add_argument(
+        "--refine",
+        action="store_true",
+        help="beyond the paper: shorten the plan found by shortcuts, splits and local moves "
+        "of its nodes (segplan.refine)",
+    )
     p.add_argument("--out", metavar="PLAN.png", help="draw the plan to this image file")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument(
@@ -123,6 +129,12 @@ def _format_plan(result: Plan, name: str) -> str:
         f"time        {1000.0 * result.seconds:.1f} ms",
         f"search      heuristic {result.heuristic}, cost {result.cost_kind}, frames {result.version}",
     ]
+    r = result.refinement
+    if r is not None:
+        lines.append(
+            f"refined     LONGD {r.cost_before:.4f} -> {r.cost_after:.4f} m, nodes {r.nodes_before} -> "
+            f"{r.nodes_after}, {1000.0 * r.seconds:.1f} ms of the time"
+        )
     return "\n".join(lines)
 
 
@@ -171,6 +183,7 @@ def main(argv: list[str] | None = None) -> int:
             version=args.frames,
             max_expansions=args.max_expansions,
             time_limit=args.time_limit,
+            refine=args.refine,
         )
     except NoPathError as exc:
         print(f"segplan: no path: {exc}", file=sys.stderr)

@@ -67,7 +67,7 @@ MOVES = np.array(
 #: Least decrease of a node's two link costs (units of L) for a local move to be taken.
 MIN_GAIN = 1e-3
 #: Screened moves checked exactly per node update.
-CHECKS_PER_UPDATE = 2
+CHECKS_PER_UPDATE = 1
 #: Fractions of a link's frame span sampled by :func:`certain_failures`.
 SAMPLES = np.linspace(0.0, 1.0, 9)
 
@@ -128,7 +128,7 @@ def refine(
     split: float = 3.0,
     first_step: float = 0.5,
     min_step: float = 1.0 / 16.0,
-    max_sweeps: int = 12,
+    max_sweeps: int = 6,
 ):
     """A shorter plan near ``plan``: shortcuts, splits and local moves of its nodes.
 
@@ -199,7 +199,7 @@ def refine(
 
 
 def refine_with(
-    plan, ex: Expander, *, rounds=1, split=3.0, first_step=0.5, min_step=1.0 / 16.0, max_sweeps=12
+    plan, ex: Expander, *, rounds=1, split=3.0, first_step=0.5, min_step=1.0 / 16.0, max_sweeps=6
 ):
     """:func:`refine` with the search's own :class:`Expander` (its caches are reused)."""
     _check_options(rounds, split, min_step, first_step, max_sweeps)

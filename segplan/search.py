@@ -44,6 +44,7 @@ heuristic frame and of formula [2], once per process) is not counted in
 
 from __future__ import annotations
 
+import dataclasses
 import heapq
 import math
 import time
@@ -158,6 +159,7 @@ class Plan:
             "version": self.version,
             "collision_checks": self.collision_checks,
             "exact_checks": self.exact_checks,
+            "refinement": None if self.refinement is None else dataclasses.asdict(self.refinement),
         }
 
 

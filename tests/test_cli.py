@@ -29,6 +29,19 @@ def test_plan_json(capsys):
     assert data["nodes"][0] == [*json.loads((SCENARIOS / "single_obstacle.json").read_text())["start"]]
 
 
+def test_plan_refine(capsys):
+    assert main(["plan", SINGLE, "--json"]) == 0
+    found = json.loads(capsys.readouterr().out)
+    assert found["refinement"] is None
+    assert main(["plan", SINGLE, "--json", "--refine"]) == 0
+    refined = json.loads(capsys.readouterr().out)
+    r = refined["refinement"]
+    assert r["cost_before"] == pytest.approx(found["cost"]) and r["cost_after"] == refined["cost"]
+    assert refined["cost"] <= found["cost"] and "refined" in refined["kinds"]
+    assert main(["plan", SINGLE, "--refine"]) == 0
+    assert "refined     LONGD" in capsys.readouterr().out
+
+
 def test_plan_draws_figure(tmp_path, capsys):
     out = tmp_path / "plan.png"
     assert main(["plan", SINGLE, "--out", str(out), "--cost", "distance", "--frames", "a"]) == 0

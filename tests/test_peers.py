@@ -83,12 +83,18 @@ def test_goal_table_logic():
         {"scenario": "t", "method": "BITstar", "space": "dubins", "budget": 5.0, "seed": 1,
          "solved": True, "valid": True, "front_length": 9.5, "seconds": 5.0},
     ]  # fmt: skip
-    g = peers.goal_table(pd.DataFrame(rows), 5.0).set_index("scenario")
+    g = peers.goal_table(pd.DataFrame(rows), 5.0, refine=False).set_index("scenario")
     assert g.loc["s", "ompl_best_front"] == 11.0 and g.loc["s", "ompl_planner"] == "BITstar"
     assert bool(g.loc["s", "goal_met"]) and g.loc["s", "time_ratio"] == pytest.approx(100.0)
     assert (
         not bool(g.loc["t", "shorter"]) and not bool(g.loc["t", "fast"]) and not bool(g.loc["t", "goal_met"])
     )
+    # the refined planner's rows are judged apart (default): none here, so no segplan length
+    g = peers.goal_table(pd.DataFrame(rows), 5.0).set_index("scenario")
+    assert not g["shorter"].any() and g["segplan_front"].isna().all()
+    rows[0]["method"] = peers.segplan_method("a", refine=True)
+    g = peers.goal_table(pd.DataFrame(rows), 5.0).set_index("scenario")
+    assert bool(g.loc["s", "goal_met"]) and math.isnan(g.loc["t", "segplan_front"])
 
 
 def test_configs():
@@ -106,12 +112,16 @@ def test_ompl_smoke_run_one_scenario():
     cfg = peers.quick_config(("single_obstacle",))
     result = peers.run_study(cfg)
     t = result.table
-    assert set(t["method"]) == {"segplan h'=a", "RRTstar"}
+    assert set(t["method"]) == {"segplan h'=a", "segplan h'=a +refine", "RRTstar"}
     assert set(t["space"]) == {"segplan", "dubins", "reedsshepp"}
-    ours = t[t["space"] == "segplan"].iloc[0]
-    assert ours["solved"] and ours["valid"]
-    assert ours["front_length"] == pytest.approx(ours["plan_cost"], rel=1e-4)  # measured = LONGD [1]
-    assert ours["curvature_jumps"] >= 0 and ours["reversals"] == 0
+    for _, ours in t[t["space"] == "segplan"].iterrows():
+        assert ours["solved"] and ours["valid"]
+        assert ours["front_length"] == pytest.approx(ours["plan_cost"], rel=1e-4)  # measured = LONGD [1]
+        assert ours["curvature_jumps"] >= 0 and ours["reversals"] == 0
+    found, refined = (
+        t.set_index("method").loc[peers.segplan_method("a", r), "front_length"] for r in (False, True)
+    )
+    assert refined <= found
     for _, r in t[t["space"] != "segplan"].iterrows():
         assert r["checks"] > 0 and r["seconds"] > 0
         assert "Exact" in r["status"] or "Approximate" in r["status"] or "Timeout" in r["status"]
