@@ -133,8 +133,10 @@ def refine(
     """A shorter plan near ``plan``: shortcuts, splits and local moves of its nodes.
 
     Beyond the paper (see the module docstring). Keeps the paper's pieces: every link is
-    a cubic union in the optimal reference system (heuristic method), free of the
-    enlarged obstacles, inside the walls and within the steering limit.
+    a cubic union in the optimal reference system (heuristic method here; through
+    ``plan_scenario(..., refine=True)`` the search's own method, so ``alpha_method="exact"``
+    makes the refinement far slower), free of the enlarged obstacles, inside the walls and
+    within the steering limit.
 
     Parameters
     ----------
