@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Create (or update) the project's virtual environment with the pinned dependencies.
-# Sourced by .ci/book and .ci/test; works on a fresh machine with Python >= 3.11.
+# Sourced by .ci/book; works on a fresh machine with Python >= 3.11.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 VENV=${SEGPLAN_VENV:-.venv}
