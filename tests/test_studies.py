@@ -21,7 +21,7 @@ from scipy.sparse.csgraph import csgraph_from_dense, floyd_warshall
 import segplan
 from segplan import Robot, Union, make_scenario, plan_scenario, random_world
 from segplan.pose import feasible_alpha_interval, intrinsic
-from segplan.studies import (
+from segplan.studies.searches import (
     plan_rear_length,
     point_lower_bounds,
     rear_length,

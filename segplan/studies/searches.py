@@ -28,10 +28,10 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from .romberg import romberg
-from .search import NoPathError, Plan, plan_scenario
-from .union import Union
-from .world import Scenario, pose_segment
+from ..romberg import romberg
+from ..search import NoPathError, Plan, plan_scenario
+from ..union import Union
+from ..world import Scenario, pose_segment
 
 __all__ = [
     "plan_rear_length",
