@@ -37,8 +37,9 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 import segplan  # noqa: E402
-from segplan.calibration import BOUND_MAX, calibration, sample_domain  # noqa: E402
 from segplan.cost import longd_approx_intrinsic, longd_exact_intrinsic, longd_integrand  # noqa: E402
+from segplan.fit.formula2 import BOUND_MAX  # noqa: E402
+from segplan.studies.approx import sample_domain  # noqa: E402
 
 
 def cpu_rate(fn, n_evals: int, repeats: int) -> float:
@@ -79,7 +80,6 @@ def main(argv=None) -> dict:
     parser.add_argument("--json", metavar="PATH", help="also write the results as JSON")
     args = parser.parse_args(argv)
 
-    calibration()  # fitted once, lazily; not part of the timings
     p0, p1, alpha, L, intr = poses(args.n, seed=101)
     ne, m = min(args.n_exact, args.n), min(args.n_scalar, args.n)
     ms = max(50, m // 4)  # Romberg single calls (slower)

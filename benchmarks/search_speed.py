@@ -16,7 +16,7 @@ One core: the script sets ``OMP_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` and
 ``MKL_NUM_THREADS`` to 1 (unless already set) before numpy loads. Off-line work is not
 timed: the fitted coefficients of the heuristic reference system
 (:func:`segplan.frame.heuristic_coefficients`) and the calibration of formula [2]
-(:func:`segplan.calibration.calibration`) are computed once per process, first, and
+(:func:`segplan.constants.load`) are read once per process, first, and
 their one-off cost is printed separately; each scenario and heuristic is then planned
 once untimed (it also caches ``d_s`` of heuristic (c), per scenario) before the timed
 runs. The machine's load average is printed with the numbers (CPU time is the robust
@@ -42,7 +42,7 @@ from pathlib import Path  # noqa: E402
 
 import segplan  # noqa: E402
 from segplan import NoPathError, plan_scenario, random_world  # noqa: E402
-from segplan.calibration import calibration  # noqa: E402
+from segplan.constants import load as load_constants  # noqa: E402
 from segplan.frame import heuristic_coefficients  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -55,7 +55,7 @@ def offline_costs() -> dict:
     :func:`segplan.plan_scenario` computes them before its clock starts.
     """
     out = {}
-    for name, fun in (("heuristic_fit_s", heuristic_coefficients), ("calibration_s", calibration)):
+    for name, fun in (("heuristic_fit_s", heuristic_coefficients), ("calibration_s", load_constants)):
         c0 = time.process_time()
         fun()
         out[name] = time.process_time() - c0

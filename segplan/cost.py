@@ -6,20 +6,48 @@ rear point on ``y = f(x)``, ``x`` in ``[x0, x1]``, formula [1] reads::
 
     LONGD = integral_x0^x1 sqrt(1 + f'(x)^2 + L^2 f''(x)^2 / (1 + f'(x)^2)^2) dx.   [1]
 
+Formula [2] holds a fitted ``k_alpha`` and is used only inside a validated domain; both
+are fitted by :mod:`segplan.fit.formula2` and read here from the data stored with the
+package (:mod:`segplan.constants`): nothing is fitted at run time.
+
 Every function here is vectorised: pose components, ``alpha`` and ``L`` may be arrays
 that broadcast against each other.
 """
 
 from __future__ import annotations
 
+import bisect
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from .calibration import S2_CAP, calibration, exact_values, in_domain
+from . import constants
 from .pose import alpha_interval, check_length, intrinsic
 from .romberg import romberg
 from .union import chord_slopes, cubic_coefficients
+
+__all__ = [
+    "BLOCK",
+    "K_COEF",
+    "S2_CAP",
+    "APPROX_DOMAIN",
+    "Domain",
+    "approx_terms",
+    "checked_intrinsic",
+    "exact_values",
+    "in_domain",
+    "k_alpha",
+    "k_from_coef",
+    "longd",
+    "longd_approx",
+    "longd_approx_intrinsic",
+    "longd_exact",
+    "longd_exact_intrinsic",
+    "longd_gauss_intrinsic",
+    "longd_integrand",
+    "longd_intrinsic",
+]
 
 
 # -- validation shared by the public functions -----------------------------------------
@@ -108,6 +136,21 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
     return _scalar_or_array(value)
 
 
+def exact_values(d, phi0, phi1, alpha, L, rtol: float = 1e-6, chunk: int = 1024) -> np.ndarray:
+    """Exact LONGD [1] of many cases, in chunks of similar difficulty.
+
+    Romberg on a batch runs until its hardest member converges; sorting by the steepest
+    frame heading ``max |phi_i + alpha|`` keeps easy cases in cheap batches.
+    """
+    d, phi0, phi1, alpha, L = (np.ravel(v) for v in np.broadcast_arrays(d, phi0, phi1, alpha, L))
+    key = np.maximum(np.abs(phi0 + alpha), np.abs(phi1 + alpha))
+    order = np.argsort(key, kind="stable")
+    out = np.empty(d.shape)
+    for part in np.array_split(order, max(1, -(-d.size // chunk))):
+        out[part] = longd_exact_intrinsic(d[part], phi0[part], phi1[part], alpha[part], L[part], rtol=rtol)
+    return out
+
+
 #: Nodes and weights of the Gauss-Legendre rule of :func:`longd_gauss_intrinsic`, on [0, 1].
 _GAUSS_NODES = 24
 _GL_T, _GL_W = np.polynomial.legendre.leggauss(_GAUSS_NODES)
@@ -163,6 +206,103 @@ def longd_exact(p0, p1, alpha, L, rtol=1e-10):
     return longd_exact_intrinsic(*checked_intrinsic(p0, p1, alpha, L), rtol=rtol)
 
 
+# -- the fitted constants of [2]: k_alpha and the validated domain ----------------------
+@dataclass(frozen=True)
+class Domain:
+    """The validated domain of [2]: per band of ``d / L``, a box in alpha and the headings.
+
+    Attributes
+    ----------
+    band_lower : tuple of float
+        Lower bounds of the ``d / L`` bands (ascending; the last band is unbounded).
+    alpha_max, phi_max : tuple of float
+        Radians, per band; ``phi_max = 0`` marks an empty band.
+    """
+
+    band_lower: tuple[float, ...]
+    alpha_max: tuple[float, ...]
+    phi_max: tuple[float, ...]
+
+    def contains(self, d, phi0, phi1, alpha, L):
+        """Vectorised membership test (see :func:`in_domain`); a scalar fast path for floats."""
+        if all(isinstance(v, float | int | np.floating) for v in (d, phi0, phi1, alpha, L)):
+            j = bisect.bisect_right(self.band_lower, d / L) - 1  # scalar fast path
+            if j < 0 or self.phi_max[j] <= 0:
+                return False
+            p_max = self.phi_max[j]
+            return abs(alpha) <= self.alpha_max[j] and abs(phi0) <= p_max and abs(phi1) <= p_max
+        lower = np.asarray(self.band_lower)
+        j = np.searchsorted(lower, np.divide(d, L), side="right") - 1
+        jj = np.maximum(j, 0)
+        a_max = np.asarray(self.alpha_max)[jj]
+        p_max = np.asarray(self.phi_max)[jj]
+        inside = (j >= 0) & (p_max > 0) & (np.abs(alpha) <= a_max)
+        inside &= (np.abs(phi0) <= p_max) & (np.abs(phi1) <= p_max)
+        return inside
+
+    def table(self):
+        """The domain as a pandas DataFrame in degrees (one row per band)."""
+        import pandas as pd
+
+        upper = (*self.band_lower[1:], math.inf)
+        return pd.DataFrame(
+            {
+                "d/L from": self.band_lower,
+                "d/L to": upper,
+                "|alpha| max (deg)": np.round(np.degrees(self.alpha_max), 6),
+                "|phi_i| max (deg)": np.round(np.degrees(self.phi_max), 6),
+            }
+        )
+
+
+_STORED = constants.formula2()
+#: ``(c0, c1)`` of ``k_alpha = c0 + c1 min(sin^2 alpha, S2_CAP)`` (stored fit).
+K_COEF: tuple[float, float] = (float(_STORED["k_coef"][0]), float(_STORED["k_coef"][1]))
+#: ``sin^2`` of the largest calibrated ``|alpha|`` (45 deg): ``k_alpha`` is constant beyond it.
+S2_CAP: float = float(_STORED["s2_cap"])
+#: The validated domain of [2] (stored fit).
+APPROX_DOMAIN = Domain(
+    tuple(float(v) for v in _STORED["domain"]["band_lower"]),
+    tuple(float(v) for v in _STORED["domain"]["alpha_max"]),
+    tuple(float(v) for v in _STORED["domain"]["phi_max"]),
+)
+
+
+def k_from_coef(coef, alpha, s2_cap: float = S2_CAP):
+    """``k_alpha`` from its coefficients (vectorised): ``c0 + c1 min(sin^2 alpha, s2_cap)``."""
+    return coef[0] + coef[1] * np.minimum(np.sin(alpha) ** 2, s2_cap)
+
+
+def k_alpha(alpha):
+    """The fitted ``k_alpha`` of formula [2] (vectorised; radians)."""
+    return k_from_coef(K_COEF, alpha)
+
+
+def in_domain(d, phi0, phi1, alpha, L):
+    """Whether [2] is used: inside the validated domain (vectorised, intrinsic parameters).
+
+    Parameters
+    ----------
+    d : float or ndarray
+        Chord length.
+    phi0, phi1 : float or ndarray
+        Intrinsic headings (radians).
+    alpha : float or ndarray
+        Reference-system angle (radians).
+    L : float or ndarray
+        Robot length.
+
+    Returns
+    -------
+    bool or ndarray of bool
+        True where ``|alpha| <= alpha_max`` and ``|phi_i| <= phi_max`` of the band of ``d / L``
+        (:data:`APPROX_DOMAIN`, fitted by :func:`segplan.fit.formula2.run_calibration`), False
+        elsewhere.
+    """
+    inside = APPROX_DOMAIN.contains(d, phi0, phi1, alpha, L)
+    return bool(inside) if np.ndim(inside) == 0 else inside
+
+
 # -- formula [2] -----------------------------------------------------------------------
 def approx_terms(d, phi0, phi1, alpha, L):
     """The two terms of the closed approximation [2] before ``k_alpha`` is applied.
@@ -214,14 +354,14 @@ def longd_approx_intrinsic(d, phi0, phi1, alpha, L, k=None):
         length; broadcast against each other. The caller guarantees validity
         (:func:`checked_intrinsic`).
     k : float or ndarray, optional
-        ``k_alpha``; by default the fitted one (:func:`segplan.calibration.k_alpha`).
+        ``k_alpha``; by default the fitted one (:func:`k_alpha`).
 
     Returns
     -------
     float or ndarray
     """
     if k is None:
-        c0, c1 = calibration().k_coef
+        c0, c1 = K_COEF
     if np.ndim(d) == np.ndim(phi0) == np.ndim(phi1) == np.ndim(alpha) == np.ndim(L) == np.ndim(k) == 0:
         d, phi0, phi1, alpha, L = float(d), float(phi0), float(phi1), float(alpha), float(L)
         kk = c0 + c1 * min(math.sin(alpha) ** 2, S2_CAP) if k is None else float(k)
@@ -289,7 +429,7 @@ def longd_approx(p0, p1, alpha, L):
     """LONGD by the closed approximation [2] (vectorised).
 
     Section "Approximate computation of cost function". Valid (|relative error| under
-    2.5 %) only inside the domain of :func:`segplan.calibration.in_domain`; use
+    2.5 %) only inside the domain of :func:`in_domain`; use
     :func:`longd` to fall back on formula [1] outside it.
 
     Parameters
@@ -376,7 +516,8 @@ def longd(p0, p1, alpha, L, rtol=1e-10):
     Section "Approximate computation of cost function": "Out of the evaluated range for
     formula [2], the Romberg algorithm is used." The domain (bands of ``d / L``, ranges
     of ``|alpha|`` and of the intrinsic headings ``|phi_i|``) and ``k_alpha`` are fitted by
-    :func:`segplan.calibration.calibration`.
+    :func:`segplan.fit.formula2.run_calibration` and stored with the package
+    (:data:`K_COEF`, :data:`APPROX_DOMAIN`).
 
     Parameters
     ----------

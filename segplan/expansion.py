@@ -89,7 +89,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import collision, cost
-from .calibration import in_domain
+from .cost import in_domain
 from .frame import heuristic_alpha, optimal_alpha_intrinsic
 from .pose import Pose
 from .romberg import RombergError

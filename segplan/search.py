@@ -53,7 +53,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .calibration import calibration
 from .cost import checked_intrinsic, longd_exact_intrinsic
 from .expansion import Expander, Workspace
 from .frame import heuristic_coefficients
@@ -370,7 +369,6 @@ def plan_scenario(
         ds_over_L = 0.0
     if alpha_method == "heuristic":
         heuristic_coefficients()
-    calibration()
     t0 = time.perf_counter()
     ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     ex = Expander(ws, version=version, alpha_method=alpha_method, **(expander or {}))

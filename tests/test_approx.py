@@ -1,5 +1,6 @@
 """LONGD: [1] against independent oracles, [2] inside its validated domain, the dispatch."""
 
+import functools
 import math
 from pathlib import Path
 
@@ -10,10 +11,47 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 import segplan
-from segplan import calibration as cal
-from segplan.cost import BLOCK, longd_approx_intrinsic, longd_exact_intrinsic, longd_intrinsic
+from segplan.cost import (
+    APPROX_DOMAIN,
+    BLOCK,
+    exact_values,
+    in_domain,
+    k_alpha,
+    longd_approx_intrinsic,
+    longd_exact_intrinsic,
+    longd_intrinsic,
+)
+from segplan.fit.formula2 import (
+    BAND_LOWER,
+    BOUND_MAX,
+    BOUND_MEAN,
+    DESIGN_MAX,
+    FRAME_CAP_DEG,
+    calibration_grid,
+    run_calibration,
+)
+from segplan.studies.approx import (
+    error_study,
+    exact_split,
+    k_basis_comparison,
+    k_by_alpha,
+    planner_links,
+    romberg_work,
+    sample_domain,
+    sample_wide,
+    term_study,
+    variant_comparison,
+    variant_domains,
+    variant_terms,
+)
 
 DEG = math.pi / 180
+
+
+@functools.cache
+def fitted():
+    """The fit of k_alpha and the domain of [2], made here (the package reads stored constants)."""
+    return run_calibration()
 
 
 # -- helpers ---------------------------------------------------------------------------
@@ -78,30 +116,31 @@ def test_longd_exact_is_the_front_wheel_path_length():
 
 # -- formula [2] inside its validated domain -------------------------------------------
 def test_calibration_is_deterministic_and_meets_its_bounds():
-    c = cal.calibration()
-    again = cal.run_calibration()
+    c = fitted()
+    again = run_calibration()
     assert again == c
-    assert c.max_error <= cal.DESIGN_MAX < cal.BOUND_MAX
-    assert c.mean_error <= cal.BOUND_MEAN
+    assert c.domain == APPROX_DOMAIN  # the stored domain is the fitted one
+    assert c.max_error <= DESIGN_MAX < BOUND_MAX
+    assert c.mean_error <= BOUND_MEAN
     a = np.linspace(0.0, math.pi / 2, 1001, endpoint=False)
-    k = cal.k_alpha(a)
+    k = k_alpha(a)
     assert np.all((0.0 < k) & (k < 1.0))  # the paper: 0 < k_alpha < 1
     dom = c.domain
     assert any(p > 0 for p in dom.phi_max)
     for a_max, p_max in zip(dom.alpha_max, dom.phi_max, strict=True):
-        assert a_max + p_max <= cal.FRAME_CAP_DEG * DEG + 1e-12
+        assert a_max + p_max <= FRAME_CAP_DEG * DEG + 1e-12
     assert list(dom.band_lower) == sorted(dom.band_lower)
 
 
 def test_error_inside_the_domain_on_a_large_random_sample():
-    df = cal.error_study(*cal.sample_domain(60_000, seed=2024))  # not the calibration grid
+    df = error_study(*sample_domain(60_000, seed=2024))  # not the calibration grid
     assert df["in_domain"].all()
-    assert df["abs_error"].max() < cal.BOUND_MAX
-    assert df["abs_error"].mean() < cal.BOUND_MEAN
+    assert df["abs_error"].max() < BOUND_MAX
+    assert df["abs_error"].mean() < BOUND_MEAN
 
 
 def test_error_at_the_corners_of_every_box():
-    dom = cal.calibration().domain
+    dom = APPROX_DOMAIN
     upper = (*dom.band_lower[1:], 1e4)
     rows = []
     for lo, hi, a_max, p_max in zip(dom.band_lower, upper, dom.alpha_max, dom.phi_max, strict=True):
@@ -113,19 +152,19 @@ def test_error_at_the_corners_of_every_box():
                     for s1 in (-1.0, 0.0, 1.0):
                         rows.append((dl, s0 * p_max, s1 * p_max, sa * a_max))
     dl, phi0, phi1, alpha = np.array(rows).T
-    df = cal.error_study(dl, phi0, phi1, alpha)
+    df = error_study(dl, phi0, phi1, alpha)
     assert df["in_domain"].all()
-    assert df["abs_error"].max() < cal.BOUND_MAX
+    assert df["abs_error"].max() < BOUND_MAX
 
 
 @settings(max_examples=80)
 @given(st.integers(0, 2**31 - 1), st.floats(0.1, 5.0), st.floats(-math.pi, math.pi))
 def test_public_longd_approx_inside_the_domain(seed, L, beta):
-    dl, phi0, phi1, alpha = (float(v[0]) for v in cal.sample_domain(1, seed=seed))
+    dl, phi0, phi1, alpha = (float(v[0]) for v in sample_domain(1, seed=seed))
     p0, p1 = world_pair(3.0, -7.0, beta, dl * L, phi0, phi1)
     exact = segplan.longd_exact(p0, p1, alpha, L)
     approx = segplan.longd_approx(p0, p1, alpha, L)
-    assert abs(approx / exact - 1.0) < cal.BOUND_MAX
+    assert abs(approx / exact - 1.0) < BOUND_MAX
     assert segplan.longd(p0, p1, alpha, L) == approx
 
 
@@ -135,15 +174,14 @@ def test_in_domain_scalar_and_vector_paths_agree():
     d = np.exp(rng.uniform(-1, 4, n))
     L = rng.uniform(0.2, 2, n)
     phi0, phi1, alpha = (rng.uniform(-1, 1, n) for _ in range(3))
-    vec = cal.in_domain(d, phi0, phi1, alpha, L)
+    vec = in_domain(d, phi0, phi1, alpha, L)
     sca = [
-        cal.in_domain(float(d[i]), float(phi0[i]), float(phi1[i]), float(alpha[i]), float(L[i]))
-        for i in range(n)
+        in_domain(float(d[i]), float(phi0[i]), float(phi1[i]), float(alpha[i]), float(L[i])) for i in range(n)
     ]
     assert vec.dtype == bool and vec.shape == (n,)
     assert np.array_equal(vec, np.array(sca))
     assert 0 < vec.mean() < 1
-    assert isinstance(cal.in_domain(4.0, 0.1, 0.1, 0.1, 1.0), bool)
+    assert isinstance(in_domain(4.0, 0.1, 0.1, 0.1, 1.0), bool)
 
 
 # -- the dispatch longd ----------------------------------------------------------------
@@ -152,13 +190,13 @@ def test_in_domain_scalar_and_vector_paths_agree():
 def test_longd_is_exact_outside_the_domain(case):
     p0, p1, alpha, L = case
     d, phi0, phi1 = (segplan.cost.checked_intrinsic(p0, p1, alpha, L)[i] for i in range(3))
-    assume(not cal.in_domain(float(d), float(phi0), float(phi1), alpha, L))
+    assume(not in_domain(float(d), float(phi0), float(phi1), alpha, L))
     assert segplan.longd(p0, p1, alpha, L) == segplan.longd_exact(p0, p1, alpha, L)
 
 
 def test_longd_vectorised_mixes_both_paths():
-    wide = cal.sample_wide(3000, seed=11, frame_cap_deg=75.0)
-    dom = cal.sample_domain(1000, seed=12)
+    wide = sample_wide(3000, seed=11, frame_cap_deg=75.0)
+    dom = sample_domain(1000, seed=12)
     dl, phi0, phi1, alpha = (np.concatenate(pair) for pair in zip(wide, dom, strict=True))
     L = 0.7
     rng = np.random.default_rng(3)
@@ -166,7 +204,7 @@ def test_longd_vectorised_mixes_both_paths():
     p0 = np.stack((np.zeros_like(dl), np.ones_like(dl), beta + phi0), axis=-1)
     p1 = np.stack((dl * L * np.cos(beta), 1.0 + dl * L * np.sin(beta), beta + phi1), axis=-1)
     got = segplan.longd(p0, p1, alpha, L)
-    inside = cal.in_domain(dl * L, phi0, phi1, alpha, L)
+    inside = in_domain(dl * L, phi0, phi1, alpha, L)
     assert 0.1 < inside.mean() < 0.9
     np.testing.assert_array_equal(got[inside], segplan.longd_approx(p0[inside], p1[inside], alpha[inside], L))
     out = np.flatnonzero(~inside)[::20]
@@ -185,14 +223,14 @@ def test_longd_invariant_under_rigid_motions(case, angle, tx, ty):
         assert fn(q0, q1, alpha, L) == pytest.approx(fn(p0, p1, alpha, L), rel=1e-9)
     d0 = segplan.cost.checked_intrinsic(p0, p1, alpha, L)
     d1 = segplan.cost.checked_intrinsic(q0, q1, alpha, L)
-    assume(cal.in_domain(*map(float, d0)) == cal.in_domain(*map(float, d1)))
+    assume(in_domain(*map(float, d0)) == in_domain(*map(float, d1)))
     assert segplan.longd(q0, q1, alpha, L) == pytest.approx(segplan.longd(p0, p1, alpha, L), rel=1e-9)
 
 
 def test_vectorised_longd_approx_matches_single_calls_and_keeps_shapes():
     rng = np.random.default_rng(1)
     n = 2 * BLOCK + 1000  # also exercises the blocked path
-    dl, phi0, phi1, alpha = cal.sample_wide(n, seed=4, frame_cap_deg=80.0)
+    dl, phi0, phi1, alpha = sample_wide(n, seed=4, frame_cap_deg=80.0)
     L = rng.uniform(0.3, 2.0, n)
     p0 = np.stack((np.zeros(n), np.zeros(n), phi0), axis=-1)
     p1 = np.stack((dl * L, np.zeros(n), phi1), axis=-1)
@@ -270,7 +308,7 @@ def test_bad_entry_in_arrays_raises_value_error(fn, n):
 
 # -- the studies the book uses ---------------------------------------------------------------
 def test_study_tables():
-    df = cal.error_study(*cal.sample_wide(500, seed=1))
+    df = error_study(*sample_wide(500, seed=1))
     assert list(df.columns) == [
         "d_over_L",
         "alpha_deg",
@@ -285,18 +323,18 @@ def test_study_tables():
         "in_domain",
     ]
     assert len(df) == 500 and np.all(np.isfinite(df[["exact", "approx"]].to_numpy()))
-    kb = cal.k_by_alpha()
+    kb = k_by_alpha()
     assert np.all(np.abs(kb["k_bin"] - kb["k_alpha"]) < 0.1)
-    comp = cal.k_basis_comparison().set_index("form")
+    comp = k_basis_comparison().set_index("form")
     assert comp.loc["c0 + c1 sin^2(alpha) (used)", "rms_error"] <= 1.01 * comp["rms_error"].min()
     assert comp.loc["constant", "rms_error"] > comp.loc["c0 + c1 sin^2(alpha) (used)", "rms_error"]
-    assert len(cal.calibration().domain.table()) == len(cal.BAND_LOWER)
+    assert len(APPROX_DOMAIN.table()) == len(BAND_LOWER)
 
 
 def test_variant_comparison_picks_the_derived_terms():
-    v = cal.variant_comparison(n_wide=2000).set_index("variant")
+    v = variant_comparison(n_wide=2000).set_index("variant")
     derived = v.loc["exact|cross=-1/2|exp=-5/2"]
-    assert derived["max_domain"] < cal.BOUND_MAX
+    assert derived["max_domain"] < BOUND_MAX
     # the OCR's Simpson first term is clearly worse, and so are the exponents -3/2 and -2
     assert v.loc["simpson|cross=-1/2|exp=-5/2", "mean_domain"] > 2 * derived["mean_domain"]
     assert v.loc["exact|cross=-1/2|exp=-3/2", "max_domain"] > 2 * derived["max_domain"]
@@ -304,24 +342,24 @@ def test_variant_comparison_picks_the_derived_terms():
 
 
 def test_run_calibration_with_the_derived_terms_is_the_calibration():
-    g = cal.calibration_grid()
-    assert cal.run_calibration(terms=(g["rear"], g["front"])) == cal.calibration()
+    g = calibration_grid()
+    assert run_calibration(terms=(g["rear"], g["front"])) == fitted()
     args = (g["d_over_L"], np.radians(g["phi0_deg"]), np.radians(g["phi1_deg"]), np.radians(g["alpha_deg"]))
-    rear, front = cal.variant_terms("exact|cross=-1/2|exp=-5/2", *args)
+    rear, front = variant_terms("exact|cross=-1/2|exp=-5/2", *args)
     np.testing.assert_allclose(rear, g["rear"], rtol=1e-12)
     np.testing.assert_allclose(front, g["front"], rtol=1e-12)
     with pytest.raises(ValueError, match="name"):
-        cal.variant_terms("exact|cross=0|exp=-5/2", *args)
+        variant_terms("exact|cross=0|exp=-5/2", *args)
 
 
 def test_variant_domains_rank_the_ocr_simpson_term_below_the_derived_one():
-    v = cal.variant_domains().set_index("variant")
+    v = variant_domains().set_index("variant")
     assert len(v) == 18
-    derived, c = v.loc["exact|cross=-1/2|exp=-5/2"], cal.calibration()
+    derived, c = v.loc["exact|cross=-1/2|exp=-5/2"], fitted()
     assert derived["n_inside"] == c.n_inside
     assert (derived["k_c0"], derived["k_c1"]) == pytest.approx(c.k_coef, rel=1e-12)
-    assert np.all(v["max_error"].dropna() <= cal.DESIGN_MAX)
-    assert np.all(v["mean_error"].dropna() <= cal.BOUND_MEAN)
+    assert np.all(v["max_error"].dropna() <= DESIGN_MAX)
+    assert np.all(v["mean_error"].dropna() <= BOUND_MEAN)
     simpson = v[v["rear"] == "simpson"]
     assert simpson["n_inside"].max() < 0.9 * derived["n_inside"]
 
@@ -329,7 +367,7 @@ def test_variant_domains_rank_the_ocr_simpson_term_below_the_derived_one():
 def test_exact_split_against_quad():
     rng = np.random.default_rng(11)
     dl, phi0, phi1, alpha = rng.uniform(1, 10, 6), *rng.uniform(-0.6, 0.6, (3, 6))
-    longd, rear = cal.exact_split(dl, phi0, phi1, alpha)
+    longd, rear = exact_split(dl, phi0, phi1, alpha)
     for i in range(dl.size):
         p0, p1 = world_pair(0.0, 0.0, 0.4, dl[i], phi0[i], phi1[i])
         u = segplan.Union(p0, p1, alpha[i], 1.0)
@@ -340,7 +378,7 @@ def test_exact_split_against_quad():
 
 
 def test_term_study_columns_and_ideal_k():
-    df = cal.term_study(*cal.sample_domain(400, seed=3))
+    df = term_study(*sample_domain(400, seed=3))
     assert {"longd", "rear_excess", "front_excess", "k_ideal|exact", "front|cross=-1/2|exp=-5/2"} <= set(df)
     # the binomial rear term overestimates the rear excess: the ideal k lies in (0, 1]
     k = df["k_ideal|exact"].dropna()
@@ -351,24 +389,24 @@ def test_term_study_columns_and_ideal_k():
 
 
 def test_romberg_work_counts_points_and_meets_the_bound_with_four_levels():
-    dl, phi0, phi1, alpha = cal.sample_domain(200, seed=4)
-    exact = cal.exact_values(dl, phi0, phi1, alpha, 1.0, rtol=1e-12)
-    ev, val = cal.romberg_work(dl, phi0, phi1, alpha, rtol=cal.BOUND_MAX)
+    dl, phi0, phi1, alpha = sample_domain(200, seed=4)
+    exact = exact_values(dl, phi0, phi1, alpha, 1.0, rtol=1e-12)
+    ev, val = romberg_work(dl, phi0, phi1, alpha, rtol=BOUND_MAX)
     assert set(np.unique(ev)) <= {3, 5, 9, 17, 33}
-    ev4, val4 = cal.romberg_work(dl, phi0, phi1, alpha, rtol=cal.BOUND_MAX, min_levels=4)
+    ev4, val4 = romberg_work(dl, phi0, phi1, alpha, rtol=BOUND_MAX, min_levels=4)
     assert np.all(ev4 >= 17) and np.all(ev4 >= ev)
-    assert np.max(np.abs(val4 / exact - 1)) < cal.BOUND_MAX
-    ev_t, val_t = cal.romberg_work(dl[:20], phi0[:20], phi1[:20], alpha[:20], rtol=1e-10)
+    assert np.max(np.abs(val4 / exact - 1)) < BOUND_MAX
+    ev_t, val_t = romberg_work(dl[:20], phi0[:20], phi1[:20], alpha[:20], rtol=1e-10)
     np.testing.assert_allclose(val_t, exact[:20], rtol=1e-9)
 
 
 def test_planner_links_records_the_search_link_costs():
     sc = segplan.load_scenario(Path(__file__).parents[1] / "scenarios" / "single_obstacle.json")
-    df = cal.planner_links({"one": sc})
+    df = planner_links({"one": sc})
     plan = segplan.plan_scenario(sc)
     assert len(df) > 0 and set(df["scenario"]) == {"one"}
     assert df["in_plan"].sum() >= len(plan.unions)
-    expected = cal.in_domain(
+    expected = in_domain(
         df["d_over_L"].to_numpy(), *np.radians(df[["phi0_deg", "phi1_deg", "alpha_deg"]].to_numpy().T), 1.0
     )
     np.testing.assert_array_equal(df["in_domain"].to_numpy(), expected)

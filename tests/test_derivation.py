@@ -5,8 +5,7 @@ import pytest
 import sympy as sp
 
 from segplan import derivation as dv
-from segplan.calibration import k_alpha
-from segplan.cost import approx_terms, longd_approx_intrinsic
+from segplan.cost import approx_terms, k_alpha, longd_approx_intrinsic
 from segplan.union import chord_slopes
 
 

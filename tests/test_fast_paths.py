@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from segplan import collision, cost, random_world
-from segplan._frame_fit import _exponents, _features
 from segplan.expansion import (
     LONGD_RTOL,
     Expander,
@@ -20,7 +19,7 @@ from segplan.expansion import (
     _longd_scalar,
     _segment_hits,
 )
-from segplan.frame import heuristic_alpha, heuristic_coefficients
+from segplan.frame import _exponents, _features, heuristic_alpha, heuristic_coefficients
 from segplan.pose import Pose, alpha_interval, intrinsic
 from segplan.world import segment_hits_polygon
 

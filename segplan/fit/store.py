@@ -1,0 +1,155 @@
+"""Run the fits and write, or check, the data file of the fitted constants.
+
+``python -m segplan.fit`` recomputes ``k_alpha`` and the domain of formula [2]
+(:func:`segplan.fit.formula2.run_calibration`) and the case-b coefficients of the
+heuristic frame (:func:`segplan.fit.heuristic.fit_heuristic`) and rewrites
+``segplan/constants.json`` (:data:`segplan.constants.PATH`) with their provenance;
+``--check`` only compares the recomputed values with the stored ones (exit status 1 on a
+difference beyond :data:`RTOL`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import platform
+import sys
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import constants
+from . import formula2
+from .heuristic import fit_heuristic
+
+__all__ = ["COMMAND", "RTOL", "compute", "differences", "main", "write"]
+
+#: The command that writes the data file.
+COMMAND = "python -m segplan.fit"
+#: Relative tolerance of ``--check`` (and of the test that refits): the fits are
+#: deterministic, so on one machine the values agree to the last bit; the margin covers
+#: other BLAS/LAPACK builds (least squares of 2 and 34 coefficients).
+RTOL = 1e-9
+
+
+def _version() -> str:
+    try:
+        return metadata.version("segplan")
+    except metadata.PackageNotFoundError:  # run from a source tree
+        return "unknown"
+
+
+def compute() -> dict[str, Any]:
+    """Run both fits and return the constants (without provenance), as stored in the file."""
+    cal = formula2.run_calibration()
+    fit = fit_heuristic()
+    return {
+        "formula2": {
+            "k_coef": [float(c) for c in cal.k_coef],
+            "s2_cap": float(formula2.S2_CAP),
+            "domain": {
+                "band_lower": [float(v) for v in cal.domain.band_lower],
+                "alpha_max": [float(v) for v in cal.domain.alpha_max],
+                "phi_max": [float(v) for v in cal.domain.phi_max],
+            },
+            "errors": {
+                "max_error": cal.max_error,
+                "mean_error": cal.mean_error,
+                "n_inside": cal.n_inside,
+                "n_grid": cal.n_grid,
+                "iterations": cal.iterations,
+            },
+            "grid": {
+                "alpha_deg": list(formula2.ALPHA_GRID_DEG),
+                "phi_deg": list(formula2.PHI_GRID_DEG),
+                "d_over_L": list(formula2.DL_GRID),
+                "frame_cap_deg": formula2.FRAME_CAP_DEG,
+                "exact_rtol": formula2.EXACT_RTOL,
+                "design_max": formula2.DESIGN_MAX,
+                "mean_max": formula2.BOUND_MEAN,
+                "seed": None,
+            },
+        },
+        "heuristic_frame": {
+            "coef": [float(c) for c in fit.coef],
+            "degree": fit.degree,
+            "phi_max": fit.phi_max,
+            "log_ratio_range": list(fit.log_ratio_range),
+            "n_problems": fit.n_problems,
+            "rms_z": fit.rms_z,
+            "grid": {
+                "step_deg": 10.0,
+                "phi_max_deg": 80.0,
+                "d_over_L": [0.25, 100.0],
+                "n_d_over_L": 9,
+                "n_scan": 12,
+                "seed": None,
+            },
+        },
+    }
+
+
+def _provenance() -> dict[str, Any]:
+    return {
+        "command": COMMAND,
+        "date": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "package_version": _version(),
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "note": "grid fits, deterministic: no random seed is involved",
+    }
+
+
+def differences(new: dict[str, Any], old: dict[str, Any], rtol: float = RTOL, path: str = "") -> list[str]:
+    """Where two constant trees differ: numbers beyond ``rtol`` (relative), anything else exactly.
+
+    The ``provenance`` entry is not compared.
+    """
+    out: list[str] = []
+    if isinstance(new, dict) and isinstance(old, dict):
+        for key in sorted(set(new) | set(old)):
+            if key == "provenance":
+                continue
+            if key not in new or key not in old:
+                out.append(f"{path}/{key}: present in only one")
+            else:
+                out += differences(new[key], old[key], rtol, f"{path}/{key}")
+    elif isinstance(new, list) and isinstance(old, list):
+        if len(new) != len(old):
+            out.append(f"{path}: length {len(new)} != {len(old)}")
+        else:
+            for i, (a, b) in enumerate(zip(new, old, strict=True)):
+                out += differences(a, b, rtol, f"{path}[{i}]")
+    elif isinstance(new, float | int) and isinstance(old, float | int) and not isinstance(new, bool):
+        if not math.isclose(new, old, rel_tol=rtol, abs_tol=0.0):
+            out.append(f"{path}: {new!r} != stored {old!r}")
+    elif new != old:
+        out.append(f"{path}: {new!r} != stored {old!r}")
+    return out
+
+
+def write(values: dict[str, Any], path: Path = constants.PATH) -> None:
+    """Write ``values`` with their provenance to ``path`` (JSON; floats round-trip exactly)."""
+    data = {"provenance": _provenance(), **values}
+    path.write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m segplan.fit [--check]``: rewrite (or only compare) the stored constants."""
+    parser = argparse.ArgumentParser(prog=COMMAND, description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true", help="only compare with the stored constants")
+    args = parser.parse_args(argv)
+    values = compute()
+    if args.check:
+        diff = differences(values, constants.load())
+        for line in diff:
+            print(line, file=sys.stderr)
+        print(f"{constants.PATH}: {'differs' if diff else 'matches the fits'}")
+        return 1 if diff else 0
+    write(values)
+    print(f"wrote {constants.PATH}")
+    return 0
