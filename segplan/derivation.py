@@ -45,6 +45,39 @@ from functools import cache
 
 import sympy as sp
 
+__all__ = [
+    "DERIVED_VARIANT",
+    "Q1",
+    "Q2",
+    "Step",
+    "alpha",
+    "bump",
+    "bump_integral_steps",
+    "cubic",
+    "cubic_steps",
+    "d",
+    "derivation_steps",
+    "formula2",
+    "formula2_steps",
+    "front_lambdified",
+    "front_steps",
+    "front_term",
+    "hermite_basis",
+    "k",
+    "L",
+    "lambdified",
+    "mbar0",
+    "mbar1",
+    "ocr_steps",
+    "rear_lambdified",
+    "rear_quadrature_readings",
+    "rear_second_order_steps",
+    "rear_steps",
+    "rear_term",
+    "variants",
+    "x",
+]
+
 # -- symbols ---------------------------------------------------------------------------
 d, L, X = sp.symbols("d L X", positive=True)
 alpha = sp.Symbol("alpha", real=True)

@@ -3,7 +3,8 @@
 Section "Mobile robot modelling": the robot is the segment from A (middle of the rear
 axle) to B (middle of the front wheel), of length ``L``. A node of the search graph is a
 pose ``(x, y, theta)``: A in world coordinates and the heading of A->B, radians,
-counter-clockwise from +x.
+counter-clockwise from +x. Angle differences are wrapped to ``(-pi, pi]`` (:func:`wrap`,
+the one convention of the package).
 
 Section "Approximate computation of cost function", Fig. 3: the *intrinsic reference
 system* of two nodes has its origin at the start point and its x-axis through the end
@@ -23,6 +24,20 @@ from typing import NamedTuple
 import numpy as np
 
 HALF_PI = 0.5 * math.pi
+
+__all__ = [
+    "HALF_PI",
+    "Intrinsic",
+    "Pose",
+    "alpha_interval",
+    "as_pose",
+    "as_poses",
+    "check_alpha",
+    "check_length",
+    "feasible_alpha_interval",
+    "intrinsic",
+    "wrap",
+]
 
 
 class Pose(NamedTuple):
@@ -53,7 +68,13 @@ class Intrinsic(NamedTuple):
 
 
 def wrap(angle):
-    """Wrap angles to ``(-pi, pi]`` (scalars or arrays)."""
+    """Wrap angles to ``(-pi, pi]`` (scalars or arrays): segplan's one convention.
+
+    Every angle difference in segplan (intrinsic headings, heading changes) is wrapped
+    here, to the half-open interval ``(-pi, pi]``: ``-pi`` maps to ``+pi``, so a reversal
+    (a goal heading opposite to the chord) reads ``+pi``. The scalar fast path
+    :func:`_wrap_scalar` performs the same operations.
+    """
     a = np.asarray(angle, dtype=float)
     a = a - (2.0 * math.pi) * np.round(a / (2.0 * math.pi))  # in [-pi, pi] up to rounding
     a = np.where(a <= -math.pi, a + 2.0 * math.pi, np.where(a > math.pi, a - 2.0 * math.pi, a))

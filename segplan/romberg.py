@@ -13,6 +13,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+__all__ = ["RombergError", "romberg"]
+
 
 class RombergError(RuntimeError):
     """Romberg integration did not reach the requested tolerance."""

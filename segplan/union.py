@@ -25,6 +25,8 @@ import numpy as np
 
 from .pose import Pose, as_pose, check_alpha, check_length, intrinsic
 
+__all__ = ["Union", "chord_slopes", "cubic_coefficients"]
+
 
 def chord_slopes(phi0, phi1, alpha):
     """End slopes relative to the chord, the paper's ``mbar_i = m_i - tan(alpha)``.

@@ -137,3 +137,13 @@ def test_wrap_lands_in_half_open_interval_and_keeps_the_angle(a):
 
 def test_wrap_of_pi_is_pi():
     assert wrap(math.pi) == math.pi and wrap(-math.pi) == math.pi
+
+
+def test_wrap_convention_is_half_open_at_minus_pi():
+    from segplan.pose import _wrap_scalar
+
+    for a, expected in ((-math.pi, math.pi), (math.pi, math.pi), (3 * math.pi, math.pi), (0.5, 0.5)):
+        assert wrap(a) == pytest.approx(expected, abs=1e-12)
+        assert _wrap_scalar(a) == wrap(a)
+    many = wrap(np.linspace(-10.0, 10.0, 2001))
+    assert np.all((many > -math.pi) & (many <= math.pi))
