@@ -75,6 +75,7 @@ __all__ = [
     "rear_steps",
     "rear_term",
     "variants",
+    "X",
     "x",
 ]
 
