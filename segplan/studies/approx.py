@@ -19,7 +19,15 @@ import math
 
 import numpy as np
 
-from ..cost import APPROX_DOMAIN, K_COEF, exact_values, k_from_coef, longd_approx_intrinsic, longd_integrand
+from ..cost import (
+    APPROX_DOMAIN,
+    K_COEF,
+    Domain,
+    exact_values,
+    k_from_coef,
+    longd_approx_intrinsic,
+    longd_integrand,
+)
 from ..fit.formula2 import ALPHA_GRID_DEG, calibration_grid, fit_k, grid_inside, k_basis, run_calibration
 from ..romberg import romberg
 from ..union import chord_slopes
@@ -40,7 +48,7 @@ __all__ = [
 ]
 
 
-def sample_domain(n: int, seed: int = 0, domain=None, d_over_L_max: float = 100.0):
+def sample_domain(n: int, seed: int = 0, domain: Domain | None = None, d_over_L_max: float = 100.0):
     """``n`` cases drawn uniformly inside the domain (deterministic).
 
     ``d / L`` is log-uniform over the non-empty bands (the last band up to
