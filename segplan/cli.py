@@ -15,7 +15,8 @@ import math
 import sys
 from pathlib import Path
 
-from .search import NoPathError, Plan, plan_scenario
+from .api import plan_scenario
+from .path import NoPathError, Plan
 from .world import ScenarioError, load_scenario
 
 EXIT_NO_PATH = 1

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 import segplan
 from segplan import NoPathError, Plan, Pose, Robot, make_scenario, plan, plan_scenario, random_world
 from segplan.cost import longd_exact
-from segplan.search import characteristic_dimension, polygon_gap
+from segplan.problem import characteristic_dimension, polygon_gap
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 SQUARE = [[4.0, -1.0], [6.0, -1.0], [6.0, 1.0], [4.0, 1.0]]

@@ -28,10 +28,12 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ..api import plan_scenario
+from ..geometry import pose_segment
+from ..path import NoPathError, Plan
 from ..romberg import romberg
-from ..search import NoPathError, Plan, plan_scenario
 from ..union import Union
-from ..world import Scenario, pose_segment
+from ..world import Scenario
 
 __all__ = [
     "plan_rear_length",
