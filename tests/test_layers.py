@@ -42,13 +42,13 @@ def test_layers_contract_catches_an_upward_import(tmp_path):
     geometry.write_text(
         geometry.read_text(encoding="utf-8")
         + textwrap.dedent(
-            '''
+            """
 
             def _upward():
                 from .api import plan  # an upward import, inside a function
 
                 return plan
-            '''
+            """
         ),
         encoding="utf-8",
     )
