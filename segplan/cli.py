@@ -19,6 +19,8 @@ from .api import plan_scenario
 from .path import NoPathError, Plan
 from .world import ScenarioError, load_scenario
 
+__all__ = ["EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
+
 EXIT_NO_PATH = 1
 EXIT_BAD_INPUT = 2
 

@@ -55,6 +55,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .geometry import check_bounds
 from .pose import as_poses, check_length
 from .union import Union
 
@@ -92,18 +93,6 @@ def _polyline_lengths(points: np.ndarray) -> np.ndarray:
 def _wrap(a: np.ndarray) -> np.ndarray:
     """Angles to ``[-pi, pi)``."""
     return np.mod(a + math.pi, 2.0 * math.pi) - math.pi
-
-
-def _check_bounds(bounds) -> tuple[float, float, float, float] | None:
-    if bounds is None:
-        return None
-    try:
-        b = tuple(float(v) for v in bounds)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax) or None, got {bounds!r}") from exc
-    if len(b) != 4 or not all(math.isfinite(v) for v in b) or not (b[0] < b[2] and b[1] < b[3]):
-        raise ValueError(f"bounds must be finite (xmin, ymin, xmax, ymax) with min < max, got {bounds!r}")
-    return b  # type: ignore[return-value]
 
 
 def _curvature(A: np.ndarray, theta: np.ndarray, scale: float):
@@ -192,7 +181,7 @@ def measure_path(
     if P.ndim != 2 or P.shape[0] < 2:
         raise ValueError(f"poses must be an (n, 3) array with n >= 2, got shape {P.shape}")
     L = check_length(L)
-    b = _check_bounds(bounds)
+    b = None if bounds is None else check_bounds(bounds)
     if jump_tol is None:
         jump_tol = 0.1 / L
     elif not (isinstance(jump_tol, int | float) and math.isfinite(jump_tol) and jump_tol > 0):
