@@ -22,10 +22,13 @@ import heapq
 import math
 import time
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 from .path import NoPathError, Plan
 from .pose import Pose
-from .problem import Problem
+
+if TYPE_CHECKING:  # the search needs only the problem's link_cost, cost_to_go and prepare
+    from .problem import Problem
 
 __all__ = ["Finish", "Successors", "astar"]
 
