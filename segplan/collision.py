@@ -97,12 +97,13 @@ Every query updates a :class:`CollisionStats` (the caller's ``stats=``, else the
 
 Speed
 -----
-Per-polygon data (:class:`ConvexPolygon`: normals, offsets, centre, ``r_max``) and per-union
-data (:class:`Sweep`: frame, box, ``M``, bounds, the level-0 positions) are computed once.
-Array polygons are validated once per distinct content (a small cache keyed by the vertex
-bytes) and the sweeps of recently seen unions are cached, so the planner may pass plain
-arrays and unions; :func:`union_free` tests one union against many obstacles, quick checks
-first.
+Per-polygon data (:class:`segplan.geometry.ConvexPolygon`: normals, offsets, centre,
+``r_max``) and per-union data (:class:`segplan.sweep.Sweep`: frame, box, ``M``, bounds, the
+level-0 positions) are computed once per object. Nothing is cached behind the caller's
+back: an array polygon is validated at each call and a :class:`segplan.Union` gets a new
+sweep; callers that test often pass :class:`~segplan.geometry.ConvexPolygon` and
+:class:`~segplan.sweep.Sweep` objects (the planner's :class:`segplan.validity.Workspace`
+does); :func:`union_free` tests one union against many obstacles, quick checks first.
 """
 
 from __future__ import annotations

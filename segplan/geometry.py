@@ -17,6 +17,23 @@ The one home of each idea the planner shares (issue 11):
 * :func:`enlarge_polygon`, the off-line enlargement of obstacles by the robot's half-width
   (section "Results": "obstacles appropriately enlarged").
 
+Enlargement (our choice, the paper gives none)
+----------------------------------------------
+The exact Minkowski sum of a convex polygon with a disk of radius ``r`` is the polygon
+with every edge offset outwards by ``r`` joined by circular arcs at the vertices, which
+is not a polygon. :func:`enlarge_polygon` keeps every offset edge and replaces the arc at
+a vertex of exterior angle ``t`` by ``m = ceil(t / max_arc)`` edges *tangent* to it
+(a circumscribed polyline, tangent at the arc's ends and at ``m - 1`` equally spaced
+points). The result is convex, contains the exact sum (every edge line supports it), and
+exceeds it by at most ``r (1 / cos(t / (2 m)) - 1) <= r (1 / cos(max_arc / 2) - 1)``,
+reached at the new vertices. The default ``max_arc = 45 deg`` bounds the excess by
+``0.0824 r`` (2.9 cm for ``r = 0.35 m``) and turns a rectangle into an octagon of 8
+edges. A plain mitre (offset lines only) would spike at acute corners: the excess at a
+corner of interior angle ``beta`` is ``r (1 / sin(beta / 2) - 1)``: 0.41 r at 90 deg,
+2.9 r at 30 deg, 6.7 r at 15 deg. Measured (tests, shapely distances): the bound is
+attained, 0.0824 r on every rectangle corner; 1.3 % more area than the exact sum on the
+shipped industrial floor.
+
 Tolerances (stated)
 -------------------
 Polygons: a turn within ``ANGLE_TOL = 1e-9`` rad of 0 or pi is a collinear vertex; an
@@ -27,7 +44,11 @@ two validators then in the package: every shipped scenario, notebook and test po
 passes them. Touching: ``TOUCH_RTOL = 1e-9`` times the size of the scene (the segment's
 length, the polygon's radius, their distance and the coordinates' magnitude) counts as
 touching, in every pose test of the planner and of scenarios alike, the tolerance of the
-swept-segment test :func:`segplan.collision.collides`.
+swept-segment test :func:`segplan.collision.collides`: a segment and a polygon are apart
+when their bounding boxes are more than ``tol`` apart or a separating axis (an edge normal
+or the segment's normal) separates them by more than ``tol``. (Before issue 11 the
+planner's own pose test was exact, ``tol = 0``; the scenarios' used this tolerance. No
+shipped scenario, notebook or test pose lies within it of an obstacle.)
 """
 
 from __future__ import annotations

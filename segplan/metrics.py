@@ -2,7 +2,7 @@
 
 A path is a dense sequence of rear-axle poses ``(x, y, theta)``, an ``(n, 3)`` array
 (A and the heading of A->B, radians), whatever planner produced it: a segplan
-:class:`~segplan.search.Plan` (:func:`plan_poses` samples its unions), an OMPL path
+:class:`~segplan.path.Plan` (:func:`plan_poses` samples its unions), an OMPL path
 (:func:`se2_poses` reads its states), an analytic curve in a test. :func:`measure_path`
 returns a :class:`PathMetrics`:
 
@@ -32,7 +32,7 @@ returns a :class:`PathMetrics`:
   given polygons and walls, **in the planning model**: pass the obstacles *enlarged* by
   the robot's half-width and the walls *shrunk* by it (``scenario.enlarged``,
   ``scenario.free_bounds``; :func:`measure_scenario_path` does). Because the enlarged
-  polygons contain the exact Minkowski sum (:func:`segplan.world.enlarge_polygon`), the
+  polygons contain the exact Minkowski sum (:func:`segplan.geometry.enlarge_polygon`), the
   real gap between the robot's body and the raw obstacles is at least this, and at most
   this plus the enlargement's excess (``0.0824 half_width`` by default). Negative means
   a sample lies outside the walls;

@@ -121,7 +121,7 @@ class Workspace:
     obstacles : sequence of (k, 2) arrays
         Enlarged obstacles, strictly convex (as :attr:`segplan.Scenario.enlarged`,
         already validated: they are wrapped as
-        :class:`segplan.collision.ConvexPolygon` without re-validation).
+        :class:`segplan.geometry.ConvexPolygon` without re-validation).
     L : float
         Robot length.
     bounds : (xmin, ymin, xmax, ymax) or None
@@ -138,7 +138,7 @@ class Workspace:
     more time-consuming routines are executed"):
 
     1. all obstacles at once: the frame bounding box of each polygon against the frame
-       box of the swept segment (:class:`segplan.collision.Sweep`), one vectorised step;
+       box of the swept segment (:class:`segplan.sweep.Sweep`), one vectorised step;
     2. a *certain hit*: a sample of the swept segment (rear point, front wheel and
        middle of the robot at ``HIT_SAMPLES`` positions) strictly inside the polygon;
     3. :func:`segplan.collision.collides` (the paper's ``d_c`` rejection, then the exact

@@ -12,23 +12,6 @@ curvature stays within ``tan(max_steer) / L`` (bicycle model).
 
 Obstacles are convex polygons, ``(k, 2)`` vertex arrays, stored counter-clockwise.
 
-Enlargement (our choice, the paper gives none)
-----------------------------------------------
-The exact Minkowski sum of a convex polygon with a disk of radius ``r`` is the polygon
-with every edge offset outwards by ``r`` joined by circular arcs at the vertices, which
-is not a polygon. :func:`enlarge_polygon` keeps every offset edge and replaces the arc at
-a vertex of exterior angle ``t`` by ``m = ceil(t / max_arc)`` edges *tangent* to it
-(a circumscribed polyline, tangent at the arc's ends and at ``m - 1`` equally spaced
-points). The result is convex, contains the exact sum (every edge line supports it), and
-exceeds it by at most ``r (1 / cos(t / (2 m)) - 1) <= r (1 / cos(max_arc / 2) - 1)``,
-reached at the new vertices. The default ``max_arc = 45 deg`` bounds the excess by
-``0.0824 r`` (2.9 cm for ``r = 0.35 m``) and turns a rectangle into an octagon of 8
-edges. A plain mitre (offset lines only) would spike at acute corners: the excess at a
-corner of interior angle ``beta`` is ``r (1 / sin(beta / 2) - 1)``: 0.41 r at 90 deg,
-2.9 r at 30 deg, 6.7 r at 15 deg. Measured (tests, shapely distances): the bound is
-attained, 0.0824 r on every rectangle corner; 1.3 % more area than the exact sum on the
-shipped industrial floor.
-
 Scenario files (JSON)
 ---------------------
 ::

@@ -17,7 +17,7 @@ search. This module adds what those comparisons need and the planner does not co
   polygons; likewise for A and the rear length. That shortest path is found exactly on
   the visibility graph of the polygon vertices (Lozano-Perez and Wesley, 1979).
 
-Nothing here plans: the search is :func:`segplan.search.plan_scenario`.
+Nothing here plans: the search is :func:`segplan.api.plan_scenario`.
 """
 
 from __future__ import annotations
