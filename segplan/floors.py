@@ -12,6 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .geometry import (
+    check_bounds,
     enlarge_polygon,
     finite_number,
     polygons_overlap,
@@ -109,13 +110,8 @@ def random_world(
     clear = robot.L if clearance is None else finite_number(clearance, "clearance", minimum=0.0)
     gap = None if min_gap is None else finite_number(min_gap, "min_gap", minimum=0.0)
     tries = 100 * (n_obstacles + 1) if max_tries is None else int(max_tries)
-    try:
-        xmin, ymin, xmax, ymax = (finite_number(b, "bounds") for b in bounds)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(
-            f"bounds must be four finite numbers (xmin, ymin, xmax, ymax), got {bounds!r}"
-        ) from exc
-    if not (xmin < xmax and ymin < ymax) or min(xmax - xmin, ymax - ymin) <= 2.0 * (rmax + robot.half_width):
+    xmin, ymin, xmax, ymax = check_bounds(bounds)
+    if min(xmax - xmin, ymax - ymin) <= 2.0 * (rmax + robot.half_width):
         raise ValueError(
             f"bounds {bounds!r} are not a rectangle large enough for obstacles of radius up to {rmax}"
         )
