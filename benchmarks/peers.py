@@ -93,7 +93,7 @@ import numpy as np
 import pandas as pd
 
 import segplan
-from segplan.collision import as_polygon, pose_collides, pose_in_bounds
+from segplan.geometry import as_polygon, pose_collides, pose_in_bounds
 from segplan.metrics import measure_scenario_path, plan_poses, se2_poses
 from segplan.world import Scenario, scenario_from_dict
 

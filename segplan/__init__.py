@@ -1,22 +1,32 @@
-"""segplan: Campoy et al. (1989), trajectory planning for an oriented-segment robot."""
+"""segplan: Campoy et al. (1989), trajectory planning for an oriented-segment robot.
 
-from .collision import (
-    CollisionStats,
-    ConvexPolygon,
-    collides,
-    pose_collides,
-    pose_in_bounds,
-    union_free,
-    union_in_bounds,
-)
+The stable API is ``segplan.__all__``: these names keep their signatures across
+releases. The modules' own exported names (each module's ``__all__``) are the library's
+parts, for studies and extensions; they may move between releases. Names with a leading
+underscore are private. The modules are layered, every dependency pointing down (the
+README's diagram; enforced by the import-linter contract in ``pyproject.toml``)::
+
+    apps      cli, plot, studies/
+    api       api (plan, plan_scenario), refine
+    search    search (A*), expansion (the paper's intermediate nodes)
+    problem   problem, links, validity, path, metrics
+    world     world, floors, collision, sweep
+    numerics  frame, cost, geometry
+    base      union, romberg, pose, derivation (and the fitted constants)
+"""
+
+from .api import plan, plan_scenario
+from .collision import CollisionStats, collides, union_free, union_in_bounds
 from .cost import longd, longd_approx, longd_exact
+from .floors import random_world
 from .frame import optimal_alpha, optimal_alpha_intrinsic
+from .geometry import ConvexPolygon, pose_collides, pose_in_bounds
 from .metrics import PathMetrics, measure_path, measure_scenario_path, plan_poses
+from .path import NoPathError, Plan, Refinement
 from .pose import Pose
-from .refine import Refinement, refine
-from .search import NoPathError, Plan, plan, plan_scenario
+from .refine import refine
 from .union import Union
-from .world import Robot, Scenario, ScenarioError, load_scenario, make_scenario, random_world, save_scenario
+from .world import Robot, Scenario, ScenarioError, load_scenario, make_scenario, save_scenario
 
 __all__ = ["Pose", "Union", "longd_exact"]
 __all__ += ["CollisionStats", "ConvexPolygon", "collides", "pose_collides", "pose_in_bounds"]

@@ -15,8 +15,11 @@ import math
 import sys
 from pathlib import Path
 
-from .search import NoPathError, Plan, plan_scenario
+from .api import plan_scenario
+from .path import NoPathError, Plan
 from .world import ScenarioError, load_scenario
+
+__all__ = ["EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
 
 EXIT_NO_PATH = 1
 EXIT_BAD_INPUT = 2

@@ -97,12 +97,13 @@ Every query updates a :class:`CollisionStats` (the caller's ``stats=``, else the
 
 Speed
 -----
-Per-polygon data (:class:`ConvexPolygon`: normals, offsets, centre, ``r_max``) and per-union
-data (:class:`Sweep`: frame, box, ``M``, bounds, the level-0 positions) are computed once.
-Array polygons are validated once per distinct content (a small cache keyed by the vertex
-bytes) and the sweeps of recently seen unions are cached, so the planner may pass plain
-arrays and unions; :func:`union_free` tests one union against many obstacles, quick checks
-first.
+Per-polygon data (:class:`segplan.geometry.ConvexPolygon`: normals, offsets, centre,
+``r_max``) and per-union data (:class:`segplan.sweep.Sweep`: frame, box, ``M``, bounds, the
+level-0 positions) are computed once per object. Nothing is cached behind the caller's
+back: an array polygon is validated at each call and a :class:`segplan.Union` gets a new
+sweep; callers that test often pass :class:`~segplan.geometry.ConvexPolygon` and
+:class:`~segplan.sweep.Sweep` objects (the planner's :class:`segplan.validity.Workspace`
+does); :func:`union_free` tests one union against many obstacles, quick checks first.
 """
 
 from __future__ import annotations
@@ -112,18 +113,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import as_pose, check_length
+from .geometry import TOUCH_RTOL, Bounds, ConvexPolygon, as_polygon, check_bounds
+from .sweep import Sweep, as_sweep, corners, cubic_points, hull_axes, quadratic_points
 from .union import Union
 
-TOUCH_RTOL = 1e-9
-"""Relative tolerance of a touching contact (times the scene size ``L + X + r + |c| + |p0|``)."""
+__all__ = [
+    "STATS",
+    "CollisionStats",
+    "collides",
+    "collision_witness",
+    "sweep_in_bounds",
+    "union_free",
+    "union_in_bounds",
+]
 
-_DC_PIECES = 16  # pieces of the polyline used to bound d_c from below
-_SWEEP_PIECES = 32  # level-0 pieces of the certified sweep
 _SWEEP_LEVELS = 3  # refinements of the certified sweep before the event test
 _FRONT_PIECES = 16  # initial pieces of the front-wheel subdivision
 _FRONT_MAX_PIECES = 4096  # guard: beyond this many live pieces, answer "collision"
-_THETA2 = 1.65  # > 1 + 2 * 3 sqrt(3) / 16 = 1.6495
+_S_FRONT = np.linspace(0.0, 1.0, _FRONT_PIECES + 1)
+_S_FRONT.flags.writeable = False
 
 
 # -- counters ------------------------------------------------------------------------------
@@ -160,431 +168,6 @@ STATS = CollisionStats()
 """Module-level counters, used when a function is not given ``stats``."""
 
 
-# -- polygons -------------------------------------------------------------------------------
-def validate_polygon(vertices, name: str = "polygon") -> np.ndarray:
-    """Validate a convex polygon and return its vertices counter-clockwise, ``(k, 2)``.
-
-    Parameters
-    ----------
-    vertices : array_like, shape (k, 2)
-        Either orientation; the closing vertex is not repeated.
-    name : str
-        Used in error messages.
-
-    Raises
-    ------
-    ValueError
-        Fewer than 3 vertices, wrong shape, non-finite numbers, repeated consecutive
-        vertices, three collinear consecutive vertices, a non-convex polygon (turns of both
-        signs) or a self-intersecting one (all turns alike but winding more than once).
-    """
-    try:
-        v = np.array(vertices, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a (k, 2) array of numbers, got {vertices!r}") from exc
-    if v.ndim != 2 or v.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (k, 2), got {v.shape}")
-    k = v.shape[0]
-    if k < 3:
-        raise ValueError(f"{name} needs at least 3 vertices, got {k}")
-    bad = ~np.all(np.isfinite(v), axis=1)
-    if np.any(bad):
-        raise ValueError(f"{name} vertex {int(np.flatnonzero(bad)[0])} is not finite: {v[bad][0].tolist()}")
-    e = np.roll(v, -1, axis=0) - v  # e[i] = v[i+1] - v[i]
-    length = np.hypot(e[:, 0], e[:, 1])
-    scale = max(1.0, float(np.abs(v).max()))
-    short = length <= 1e-12 * scale
-    if np.any(short):
-        i = int(np.flatnonzero(short)[0])
-        raise ValueError(f"{name} vertices {i} and {(i + 1) % k} coincide (degenerate polygon)")
-    ep = np.roll(e, 1, axis=0)  # edge arriving at vertex i
-    turn = ep[:, 0] * e[:, 1] - ep[:, 1] * e[:, 0]  # cross(e_{i-1}, e_i): turn at vertex i
-    flat = np.abs(turn) <= 1e-12 * length * np.roll(length, 1)
-    if np.any(flat):
-        i = int(np.flatnonzero(flat)[0])
-        raise ValueError(
-            f"{name} vertices {(i - 1) % k}, {i}, {(i + 1) % k} are collinear (degenerate polygon; "
-            "remove the middle vertex)"
-        )
-    if not (np.all(turn > 0) or np.all(turn < 0)):
-        sign = np.sign(turn)
-        major = 1.0 if np.count_nonzero(sign > 0) >= np.count_nonzero(sign < 0) else -1.0
-        i = int(np.flatnonzero(sign != major)[0])
-        raise ValueError(
-            f"{name} is not convex (or is self-intersecting): the turn at vertex {i} has the opposite sign"
-        )
-    winding = float(np.sum(np.arctan2(turn, np.einsum("ij,ij->i", ep, e)))) / (2.0 * math.pi)
-    if abs(abs(winding) - 1.0) > 1e-6:
-        raise ValueError(
-            f"{name} is self-intersecting: its boundary winds {abs(winding):.3g} times (a star polygon)"
-        )
-    return v if turn[0] > 0 else v[::-1].copy()
-
-
-class ConvexPolygon:
-    """A validated convex polygon with the data the tests need, computed once (immutable).
-
-    Parameters
-    ----------
-    vertices : array_like, shape (k, 2)
-        Either orientation.
-    check : bool
-        Validate (:func:`validate_polygon`). With ``check=False`` the caller guarantees a
-        strictly convex, non-degenerate polygon; only the orientation is normalised.
-
-    Attributes
-    ----------
-    vertices : ndarray (k, 2)
-        Counter-clockwise, read-only.
-    normals : ndarray (k, 2)
-        Outward unit normal of edge ``i`` (from vertex ``i`` to ``i + 1``).
-    offsets : ndarray (k,)
-        ``normals[i] . p <= offsets[i]`` for every point of the polygon.
-    centre : tuple of float
-        Centre of the bounding box (the paper's "centre of the polygon").
-    radius : float
-        Largest distance from ``centre`` to a vertex (the paper's ``r_max``).
-    """
-
-    __slots__ = ("vertices", "normals", "offsets", "centre", "radius")
-
-    def __init__(self, vertices, check: bool = True):
-        if check:
-            v = validate_polygon(vertices)
-        else:
-            v = np.array(vertices, dtype=float)
-            nxt = np.concatenate((v[1:], v[:1]))  # np.roll(v, -1, axis=0), without its overhead
-            area2 = float(np.sum(v[:, 0] * nxt[:, 1] - nxt[:, 0] * v[:, 1]))
-            if area2 < 0:
-                v = v[::-1].copy()
-        e = np.concatenate((v[1:], v[:1])) - v  # v[i+1] - v[i]
-        n = np.column_stack((e[:, 1], -e[:, 0])) / np.hypot(e[:, 0], e[:, 1])[:, None]
-        h = np.einsum("ij,ij->i", n, v)
-        lo, hi = v.min(axis=0), v.max(axis=0)
-        c = 0.5 * (lo + hi)
-        r = float(np.max(np.hypot(v[:, 0] - c[0], v[:, 1] - c[1])))
-        for arr in (v, n, h):
-            arr.flags.writeable = False
-        for key, value in zip(self.__slots__, (v, n, h, (float(c[0]), float(c[1])), r), strict=True):
-            object.__setattr__(self, key, value)
-
-    def __setattr__(self, name, value):
-        raise AttributeError("ConvexPolygon is immutable")
-
-    def __repr__(self) -> str:
-        return f"ConvexPolygon({self.vertices.tolist()})"
-
-    def __len__(self) -> int:
-        return len(self.vertices)
-
-
-_POLYGONS: dict[bytes, ConvexPolygon] = {}  # validated polygons by content
-_CACHE_SIZE = 256
-
-
-def as_polygon(polygon, check: bool = True, name: str = "polygon") -> ConvexPolygon:
-    """Return ``polygon`` as a :class:`ConvexPolygon` (no work if it already is one).
-
-    Array polygons are prepared once per distinct content: a small cache keyed by the
-    vertex bytes (not by identity, so a caller that mutates its array gets a fresh
-    check) spares the planner repeated validation of the same obstacle.
-    """
-    if isinstance(polygon, ConvexPolygon):
-        return polygon
-    try:
-        v = np.asarray(polygon, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a (k, 2) array of numbers, got {polygon!r}") from exc
-    key = v.tobytes() + repr(v.shape).encode()
-    poly = _POLYGONS.get(key)
-    if poly is None:
-        poly = (
-            ConvexPolygon(validate_polygon(v, name), check=False) if check else ConvexPolygon(v, check=False)
-        )
-        if check:  # only validated polygons are shared
-            if len(_POLYGONS) >= _CACHE_SIZE:
-                _POLYGONS.clear()
-            _POLYGONS[key] = poly
-    return poly
-
-
-def _bounds(bounds) -> tuple[float, float, float, float]:
-    try:
-        b = tuple(float(v) for v in bounds)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax), got {bounds!r}") from exc
-    if len(b) != 4 or not all(math.isfinite(v) for v in b):
-        raise ValueError(f"bounds must be four finite numbers (xmin, ymin, xmax, ymax), got {bounds!r}")
-    if not (b[0] < b[2] and b[1] < b[3]):
-        raise ValueError(f"bounds must have xmin < xmax and ymin < ymax, got {b}")
-    return b
-
-
-# -- polynomials on [0, 1] ----------------------------------------------------------------------
-def _quadratic_points(a2, a1, a0):
-    """Real roots of ``a2 s^2 + a1 s + a0`` (vectorised), ``(m, 2)``.
-
-    A negative discriminant gives the real part of the complex pair (the vertex of the
-    parabola) twice: the abscissa of a near-double root. Missing roots are ``nan``.
-    """
-    with np.errstate(all="ignore"):
-        big = np.maximum(np.maximum(np.abs(a2), np.abs(a1)), np.abs(a0))
-        big = np.where(big > 0, big, 1.0)
-        a2, a1, a0 = a2 / big, a1 / big, a0 / big
-        quad = np.abs(a2) > 1e-12
-        disc = a1 * a1 - 4.0 * a2 * a0
-        sq = np.sqrt(np.maximum(disc, 0.0))
-        q = -0.5 * (a1 + np.where(a1 >= 0, sq, -sq))  # no cancellation
-        r1 = np.where(disc >= 0, q / a2, -a1 / (2.0 * a2))
-        r2 = np.where(disc >= 0, np.where(q != 0, a0 / q, r1), r1)
-        lin = np.where(np.abs(a1) > 1e-12, -a0 / a1, np.nan)
-        return np.stack((np.where(quad, r1, lin), np.where(quad, r2, lin)), axis=-1)
-
-
-def _cubic_points(a3, a2, a1, a0):
-    """Real parts of the roots of ``a3 s^3 + a2 s^2 + a1 s + a0`` (vectorised), ``(m, 3)``.
-
-    Eigenvalues of the (balanced) companion matrices, which stay accurate when the cubic
-    coefficient is tiny (a closed form loses up to 1e-2 there), then two Newton steps on
-    the cubic, each kept only if small. The real part of a complex pair is the abscissa of
-    a near-double root, so it is kept as a candidate. A vanishing cubic coefficient is
-    replaced by ``1e-14`` of the largest one: on ``[0, 1]`` the cubic changes by less than
-    that, and the extra root lies far outside.
-    """
-    big = np.maximum(np.maximum(np.abs(a3), np.abs(a2)), np.maximum(np.abs(a1), np.abs(a0)))
-    big[big == 0.0] = 1.0
-    a3, a2, a1, a0 = a3 / big, a2 / big, a1 / big, a0 / big
-    lead = np.where(np.abs(a3) > 1e-14, a3, np.where(a3 < 0, -1e-14, 1e-14))
-    comp = np.zeros((len(a3), 3, 3))
-    comp[:, 1, 0] = comp[:, 2, 1] = 1.0
-    comp[:, 0, 2], comp[:, 1, 2], comp[:, 2, 2] = -a0 / lead, -a1 / lead, -a2 / lead
-    r = np.linalg.eigvals(comp).real
-    a3, a2, a1, a0 = a3[:, None], a2[:, None], a1[:, None], a0[:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for _ in range(2):
-            step = (((a3 * r + a2) * r + a1) * r + a0) / ((3.0 * a3 * r + 2.0 * a2) * r + a1)
-            r = np.where(np.abs(step) < 1e-3, r - step, r)
-    return r
-
-
-# -- the swept segment of one union ----------------------------------------------------------
-def _quadratic_roots(a: float, b: float, c: float) -> list[float]:
-    """Real roots of ``a x^2 + b x + c`` (scalars; a double root once)."""
-    if a == 0.0:
-        return [] if b == 0.0 else [-c / b]
-    disc = b * b - 4.0 * a * c
-    if disc < 0.0:
-        return []
-    q = -0.5 * (b + math.copysign(math.sqrt(disc), b))
-    return [q / a] if q == 0.0 else [q / a, c / q]
-
-
-def _hull_axes(P4):
-    """Unit normals of the six point pairs of ``P4 = (A_lo, B_lo, A_hi, B_hi)``, ``(m, 6, 2)``,
-    and the extent ``(min, max)`` of the four points along each, ``(m, 6)`` each."""
-    D = P4[:, _PAIR_J] - P4[:, _PAIR_I]
-    ln = np.hypot(D[..., 0], D[..., 1])
-    ln[ln == 0.0] = np.inf  # a degenerate pair gives a null axis (gap 0)
-    nrm = np.empty_like(D)
-    nrm[..., 0] = -D[..., 1] / ln
-    nrm[..., 1] = D[..., 0] / ln
-    q = nrm @ P4.transpose(0, 2, 1)  # (m, 6, 4)
-    q0, q1, q2, q3 = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
-    return (
-        nrm,
-        np.minimum(np.minimum(q0, q1), np.minimum(q2, q3)),
-        np.maximum(np.maximum(q0, q1), np.maximum(q2, q3)),
-    )
-
-
-def _corners(A_lo, B_lo, A_hi, B_hi):
-    """Stack the four end points of pieces, ``(m, 4, 2)``."""
-    P4 = np.empty((len(A_lo), 4, 2))
-    P4[:, 0], P4[:, 1], P4[:, 2], P4[:, 3] = A_lo, B_lo, A_hi, B_hi
-    return P4
-
-
-_PAIR_I = np.array([0, 2, 0, 1, 0, 1])
-_PAIR_J = np.array([1, 3, 2, 3, 3, 2])
-_S_GRID = np.linspace(0.0, 1.0, _SWEEP_PIECES + 1)
-_S_DC = np.linspace(0.0, 1.0, _DC_PIECES + 1)
-_S_FRONT = np.linspace(0.0, 1.0, _FRONT_PIECES + 1)
-_S_FRONT.flags.writeable = False
-
-
-class _Grid:
-    """Level-0 positions of the certified sweep (per union, built on first use)."""
-
-    __slots__ = ("s", "A", "B", "nseg", "oseg", "nrm", "qmin", "qmax", "kx", "dx", "e")
-
-
-class Sweep:
-    """Per-union data of the collision tests, computed once (read-only).
-
-    Parameters
-    ----------
-    union : Union
-
-    Notes
-    -----
-    Frame quantities refer to the union's alpha frame (origin ``p0``, x-axis at world
-    angle ``union.frame_angle``). ``box = (x_lo, x_hi, y_lo, y_hi)`` is a rectangle of that
-    frame containing every position of the segment. Reusing one ``Sweep`` for all
-    obstacles (as :func:`union_free` does) saves the per-union work.
-    """
-
-    __slots__ = (
-        "union", "L", "X", "c1", "c2", "c3", "x0", "y0", "cos", "sin", "box", "dc_end", "dc_margin",
-        "K", "size", "mag", "_grid", "_dc", "_rot",
-    )  # fmt: skip
-
-    def __init__(self, union: Union):
-        if not isinstance(union, Union):
-            raise ValueError(f"union must be a segplan.Union, got {type(union).__name__}")
-        L, X = union.L, union.x_end
-        _, c1, c2, c3 = union.coefficients
-        beta = union.frame_angle
-        cb, sb = math.cos(beta), math.sin(beta)
-        # extremes of f on [0, X]: ends and roots of f' = c1 + 2 c2 x + 3 c3 x^2
-        xs = [0.0, X] + [r for r in _quadratic_roots(3.0 * c3, 2.0 * c2, c1) if 0.0 < r < X]
-        fs = [((c3 * x + c2) * x + c1) * x for x in xs]
-        # extremes of f' on [0, X]: ends and the vertex of the parabola
-        sl = [c1, c1 + (2.0 * c2 + 3.0 * c3 * X) * X]
-        if c3 != 0.0 and 0.0 < -c2 / (3.0 * c3) < X:
-            xv = -c2 / (3.0 * c3)
-            sl.append(c1 + (2.0 * c2 + 3.0 * c3 * xv) * xv)
-        # the direction's u_y = f' / sqrt(1 + f'^2) grows with f'
-        uy_lo, uy_hi = (m / math.sqrt(1.0 + m * m) for m in (min(sl), max(sl)))
-        box = (0.0, X + L, min(fs) + L * min(0.0, uy_lo), max(fs) + L * max(0.0, uy_hi))
-        # d_c: polyline of the cubic (M = L), or of the cubic extended to X + L (M = L^2 max|f''| / 2)
-        f2 = max(abs(2.0 * c2), abs(2.0 * c2 + 6.0 * c3 * X))
-        f2e = max(abs(2.0 * c2), abs(2.0 * c2 + 6.0 * c3 * (X + L)))
-        m_ext = 0.5 * L * L * f2e
-        x_end, margin, f2c = (X + L, m_ext, f2e) if m_ext < L else (X, L, f2)
-        margin += f2c * (x_end / _DC_PIECES) ** 2 / 8.0  # chord error of the polyline
-        # |B''| bound over [0, X] (x units), then in s = x / X units
-        k_x = f2 + L * (6.0 * abs(c3) + _THETA2 * f2 * f2)
-        values = (
-            union, L, X, c1, c2, c3, union.p0.x, union.p0.y, cb, sb, box, x_end, margin,
-            k_x * X * X, L + X, max(abs(union.p0.x), abs(union.p0.y)), None, None, None,
-        )  # fmt: skip
-        for key, value in zip(self.__slots__, values, strict=True):
-            object.__setattr__(self, key, value)
-
-    def __setattr__(self, name, value):
-        raise AttributeError("Sweep is read-only")
-
-    # -- positions --------------------------------------------------------------------------
-    def segment(self, s):
-        """Frame rear point and unit direction at ``s = x / X``: ``(x, f(x), u_x, u_y)``."""
-        x = self.X * s
-        fx = ((self.c3 * x + self.c2) * x + self.c1) * x
-        fp = (3.0 * self.c3 * x + 2.0 * self.c2) * x + self.c1
-        ux = 1.0 / np.sqrt(1.0 + fp * fp)
-        return x, fx, ux, fp * ux
-
-    def front(self, s) -> np.ndarray:
-        """Frame front-wheel points ``B`` at ``s``, ``(n, 2)``."""
-        x, fx, ux, uy = self.segment(s)
-        return np.stack((x + self.L * ux, fx + self.L * uy), axis=-1)
-
-    @property
-    def rot(self) -> np.ndarray:
-        """Rotation world -> frame for row vectors: ``(q - p0) @ rot``."""
-        if self._rot is None:
-            object.__setattr__(self, "_rot", np.array([[self.cos, -self.sin], [self.sin, self.cos]]))
-        return self._rot
-
-    @property
-    def p0(self) -> np.ndarray:
-        """The union's start point (world)."""
-        return np.array([self.x0, self.y0])
-
-    def local(self, poly: ConvexPolygon):
-        """The polygon in the frame: vertices, outward unit normals, offsets."""
-        rot, p0 = self.rot, self.p0
-        V = (poly.vertices - p0) @ rot
-        N = poly.normals @ rot
-        H = poly.offsets - poly.normals @ p0
-        return V, N, H
-
-    def bend(self, s_lo, s_hi) -> np.ndarray:
-        """Bound on ``|P''(x)|`` (x units) over each ``[s_lo, s_hi]``, for every point ``P``
-        of the segment (``P = A + t u``, ``0 <= t <= L``; ``|P''| <= |A''| + L |u''|``)."""
-        c2, c3, X = self.c2, self.c3, self.X
-        f2 = np.maximum(np.abs(2.0 * c2 + 6.0 * c3 * X * s_lo), np.abs(2.0 * c2 + 6.0 * c3 * X * s_hi))
-        return f2 + self.L * (6.0 * abs(c3) + _THETA2 * f2 * f2)
-
-    def grid(self) -> _Grid:
-        """Positions, hull axes and chord bounds of the level-0 sweep (cached)."""
-        g = self._grid
-        if g is not None:
-            return g
-        g = _Grid()
-        g.s = s = _S_GRID
-        x, fx, ux, uy = self.segment(s)
-        g.A = A = np.empty((len(s), 2))
-        A[:, 0], A[:, 1] = x, fx
-        g.B = B = np.empty_like(A)
-        B[:, 0], B[:, 1] = x + self.L * ux, fx + self.L * uy
-        g.nseg = nseg = np.empty_like(A)  # unit normal of the segment's line
-        nseg[:, 0], nseg[:, 1] = -uy, ux
-        g.oseg = ux * fx - uy * x
-        g.nrm = g.qmin = g.qmax = None  # hull axes: built on first use (_sweep)
-        g.kx = self.bend(s[:-1], s[1:])
-        g.dx = self.X / _SWEEP_PIECES
-        g.e = g.kx * (g.dx * g.dx / 8.0)
-        object.__setattr__(self, "_grid", g)
-        return g
-
-    # -- quick checks -----------------------------------------------------------------------
-    def quick_reject(self, poly: ConvexPolygon) -> tuple[bool, float]:
-        """The paper's quick checks: ``(True, tol)`` if ``poly`` certainly cannot be touched.
-
-        Box, then ``d_c > r_max + M`` (see the module docstring). Also returns the touching
-        tolerance ``tol`` of this pair.
-        """
-        dx, dy = poly.centre[0] - self.x0, poly.centre[1] - self.y0
-        cx, cy = self.cos * dx + self.sin * dy, self.cos * dy - self.sin * dx
-        tol = TOUCH_RTOL * (self.size + poly.radius + math.hypot(cx, cy) + self.mag)
-        r = poly.radius + tol
-        x_lo, x_hi, y_lo, y_hi = self.box
-        gx = max(x_lo - cx, 0.0, cx - x_hi)
-        gy = max(y_lo - cy, 0.0, cy - y_hi)
-        if gx * gx + gy * gy > r * r:
-            return True, tol
-        # d_c >= (distance to the polyline) - (chord error); reject if d_c > r_max + M
-        if self._dc is None:
-            px = self.dc_end * _S_DC
-            py = ((self.c3 * px + self.c2) * px + self.c1) * px
-            ex, ey = px[1:] - px[:-1], py[1:] - py[:-1]
-            object.__setattr__(self, "_dc", (px[:-1], py[:-1], ex, ey, 1.0 / (ex * ex + ey * ey)))
-        px, py, ex, ey, inv = self._dc
-        wx, wy = cx - px, cy - py
-        t = np.clip((wx * ex + wy * ey) * inv, 0.0, 1.0)
-        wx -= t * ex
-        wy -= t * ey
-        d2 = float((wx * wx + wy * wy).min())
-        lim = r + self.dc_margin
-        return d2 > lim * lim, tol
-
-
-_SWEEPS: dict[int, Sweep] = {}  # recent sweeps by id of their union (a Sweep keeps its union alive)
-
-
-def as_sweep(union: Union | Sweep) -> Sweep:
-    """Return the :class:`Sweep` of ``union`` (cached for recently seen unions)."""
-    if isinstance(union, Sweep):
-        return union
-    sw = _SWEEPS.get(id(union))
-    if sw is None or sw.union is not union:
-        sw = Sweep(union)
-        if len(_SWEEPS) >= _CACHE_SIZE:
-            _SWEEPS.clear()
-        _SWEEPS[id(union)] = sw
-    return sw
-
-
 # -- exact test ----------------------------------------------------------------------------------
 def _touching(sw: Sweep, s, V, N, H, tol):
     """Segment-polygon separating-axis test at abscissae ``s``; index of the first hit or -1."""
@@ -600,7 +183,7 @@ def _touching(sw: Sweep, s, V, N, H, tol):
 
 def _hull_gaps(P4, V, N, H):
     """Separating-axis gap between the hull of each ``P4`` (``(m, 4, 2)``) and the polygon."""
-    nrm, qmin, qmax = _hull_axes(P4)
+    nrm, qmin, qmax = hull_axes(P4)
     pv = nrm @ V.T  # (m, 6, k)
     gap = np.maximum(pv.min(axis=2) - qmax, qmin - pv.max(axis=2)).max(axis=1)
     g4 = P4 @ N.T - H  # (m, 4, k)
@@ -633,7 +216,7 @@ def _sweep(sw: Sweep, V, N, H, tol):
     if not (gap_poly <= g.e).any():
         return None, None
     if g.nrm is None:
-        nrm, g.qmin, g.qmax = _hull_axes(_corners(g.A[:-1], g.B[:-1], g.A[1:], g.B[1:]))
+        nrm, g.qmin, g.qmax = hull_axes(corners(g.A[:-1], g.B[:-1], g.A[1:], g.B[1:]))
         g.nrm = nrm.reshape(-1, 2)
     pv = (g.nrm @ V.T).reshape(-1, 6, k)
     gap = np.maximum(pv.min(axis=2) - g.qmax, g.qmin - pv.max(axis=2)).max(axis=1)
@@ -657,7 +240,7 @@ def _sweep(sw: Sweep, V, N, H, tol):
         B_lo, B_hi = np.concatenate((B_lo, B_mid)), np.concatenate((B_mid, B_hi))
         kx = np.concatenate((kx, kx))
         dx *= 0.5
-        live = _hull_gaps(_corners(A_lo, B_lo, A_hi, B_hi), V, N, H) <= kx * (dx * dx / 8.0)
+        live = _hull_gaps(corners(A_lo, B_lo, A_hi, B_hi), V, N, H) <= kx * (dx * dx / 8.0)
         if not live.any():
             return None, None
         s_lo, s_hi, kx = s_lo[live], s_hi[live], kx[live]
@@ -674,14 +257,14 @@ def _event_abscissae(sw: Sweep, V, N, H) -> np.ndarray:
     k = len(H)
     # (ii) a_e(s) = -h + (n_x X + n_y F1) s + n_y F2 s^2 + n_y F3 s^3
     # (iv) h_V(s) = (V_y - c1 V_x) - 2 c2 X V_x s + (c2 - 3 c3 V_x) X^2 s^2 + 2 c3 X^3 s^3
-    roots = _cubic_points(
+    roots = cubic_points(
         np.concatenate((ny * F3, np.full(k, 2.0 * F3))),
         np.concatenate((ny * F2, (c2 - 3.0 * c3 * vx) * X * X)),
         np.concatenate((nx * X + ny * F1, -2.0 * c2 * X * vx)),
         np.concatenate((-H, vy - c1 * vx)),
     )
     # stationary points: a_e' = 0 where f' equals the edge's slope; h_V' = 0 at x = V_x, f'' = 0
-    crit = _quadratic_points(3.0 * ny * F3, 2.0 * ny * F2, nx * X + ny * F1)
+    crit = quadratic_points(3.0 * ny * F3, 2.0 * ny * F2, nx * X + ny * F1)
     extra = [vx / X, np.array([0.0, 1.0])]
     if c3 != 0.0:
         extra.append(np.array([-c2 / (3.0 * c3 * X)]))
@@ -896,12 +479,12 @@ def union_in_bounds(union: Union | Sweep, bounds) -> bool:
     union : Union or Sweep
     bounds : (xmin, ymin, xmax, ymax)
     """
-    checked = _bounds(bounds)  # checked before the union, as always
-    return _union_in_bounds(as_sweep(union), checked)
+    checked = check_bounds(bounds)  # checked before the union, as always
+    return sweep_in_bounds(as_sweep(union), checked)
 
 
-def _union_in_bounds(sw: Sweep, bounds: tuple[float, float, float, float]) -> bool:
-    """:func:`union_in_bounds` of a sweep, for bounds already checked by :func:`_bounds`."""
+def sweep_in_bounds(sw: Sweep, bounds: Bounds) -> bool:
+    """:func:`union_in_bounds` of a sweep, for bounds checked by :func:`segplan.geometry.check_bounds`."""
     xmin, ymin, xmax, ymax = bounds
     tol = TOUCH_RTOL * (sw.size + (xmax - xmin) + (ymax - ymin) + math.hypot(sw.x0, sw.y0))
     x_lo, x_hi, y_lo, y_hi = sw.box
@@ -918,46 +501,10 @@ def _union_in_bounds(sw: Sweep, bounds: tuple[float, float, float, float]) -> bo
     X, c1, c2, c3 = sw.X, sw.c1, sw.c2, sw.c3
     nx, ny = N[:, 0], N[:, 1]
     # rear: a_j(s) = n_x X s + n_y f(X s) - h, maximal at s in {0, 1} or a_j'(s) = 0
-    crit = _quadratic_points(3.0 * ny * c3 * X**3, 2.0 * ny * c2 * X * X, nx * X + ny * c1 * X)
+    crit = quadratic_points(3.0 * ny * c3 * X**3, 2.0 * ny * c2 * X * X, nx * X + ny * c1 * X)
     s = np.concatenate((crit.ravel(), [0.0, 1.0]))
     s = np.clip(s[np.isfinite(s)], 0.0, 1.0)
     x, fx, _, _ = sw.segment(s)
     if np.any(np.multiply.outer(x, nx) + np.multiply.outer(fx, ny) - H >= -tol):
         return False
     return not _front_reaches(sw, N, H, tol)
-
-
-# -- single poses ---------------------------------------------------------------------------------
-def _pose_segment(pose, L):
-    p = as_pose(pose)
-    L = check_length(L)
-    return p.x, p.y, L * math.cos(p.theta), L * math.sin(p.theta), L
-
-
-def pose_collides(pose, L: float, polygon, *, check: bool = True) -> bool:
-    """Does the robot's segment at ``pose`` (A and heading, radians) touch ``polygon``?
-
-    Separating axes (the polygon's edge normals and the segment's normal); touching
-    counts, with the tolerance of :func:`collides`.
-    """
-    ax, ay, dx, dy, L = _pose_segment(pose, L)
-    poly = as_polygon(polygon, check)
-    V = poly.vertices - (ax, ay)
-    tol = TOUCH_RTOL * (
-        L + poly.radius + math.hypot(poly.centre[0] - ax, poly.centre[1] - ay) + max(abs(ax), abs(ay))
-    )
-    gA = -(poly.offsets - poly.normals @ (ax, ay))
-    gB = gA + poly.normals @ (dx, dy)
-    if np.any(np.minimum(gA, gB) > tol):
-        return False
-    side = (dx * V[:, 1] - dy * V[:, 0]) / L
-    return not (np.all(side > tol) or np.all(side < -tol))
-
-
-def pose_in_bounds(pose, L: float, bounds) -> bool:
-    """Does the robot's segment at ``pose`` lie strictly inside ``bounds`` (walls)?"""
-    ax, ay, dx, dy, L = _pose_segment(pose, L)
-    xmin, ymin, xmax, ymax = _bounds(bounds)
-    tol = TOUCH_RTOL * (L + (xmax - xmin) + (ymax - ymin) + math.hypot(ax, ay))
-    xs, ys = (ax, ax + dx), (ay, ay + dy)
-    return xmin + tol < min(xs) and max(xs) < xmax - tol and ymin + tol < min(ys) and max(ys) < ymax - tol

@@ -28,6 +28,7 @@ from .romberg import romberg
 from .union import chord_slopes, cubic_coefficients
 
 __all__ = [
+    "longd_intrinsic_scalar",
     "BLOCK",
     "K_COEF",
     "S2_CAP",
@@ -508,6 +509,17 @@ def longd_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10):
             d[outside], phi0[outside], phi1[outside], alpha[outside], L[outside], rtol=rtol
         )
     return out
+
+
+def longd_intrinsic_scalar(d: float, phi0: float, phi1: float, alpha: float, L: float, rtol: float) -> float:
+    """:func:`longd_intrinsic` of one union given in floats (the same value, faster).
+
+    Formula [2] inside its domain (:func:`in_domain`), else Romberg on [1]; the scalar
+    fast path the planner's link model uses.
+    """
+    if in_domain(d, phi0, phi1, alpha, L):
+        return float(longd_approx_intrinsic(d, phi0, phi1, alpha, L))
+    return float(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=rtol))
 
 
 def longd(p0, p1, alpha, L, rtol=1e-10):

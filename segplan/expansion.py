@@ -65,7 +65,7 @@ that union does not exist).
 
 *Steering limit* (not in the paper). Every union must keep the rear path's curvature
 within ``tan(max_steer) / L``. When the optimal frame's cubic breaks it, version "b"
-tries the frame of least peak curvature instead (:meth:`Expander._steer`).
+tries the frame of least peak curvature instead (:meth:`segplan.links.LinkModel._steer`).
 
 *Difficult cases* (section III: "great changes of slope, or even orientations opposing
 the direction in which a natural trajectory would be traversed ... can be solved ... by
@@ -84,63 +84,25 @@ around; the search bounds the length of such chains.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from . import collision, cost
-from .cost import in_domain
-from .frame import heuristic_alpha, optimal_alpha_intrinsic
-from .pose import Pose
-from .romberg import RombergError
-from .union import Union, cubic_coefficients
-from .world import segment_in_bounds
+from .links import LinkModel
+from .pose import Pose, wrap_scalar
+from .union import Union
+from .validity import ExpansionStats, Workspace
+
+__all__ = [
+    "Candidate",
+    "Expander",
+    "Successor",
+    "clamped_spline_tangent",
+    "outward_bisectors",
+    "tangent_vertices",
+]
 
 HALF_PI = 0.5 * math.pi
-TWO_PI = 2.0 * math.pi
-#: Margin (radians) kept from the ends of the interval where the cubic exists.
-ALPHA_MARGIN = 1e-9
-#: Romberg tolerance of link costs outside the domain of formula [2] (the paper uses Romberg
-#: with the same error bound as [2], 2.5 %; we keep far below it).
-LONGD_RTOL = 1e-5
-#: Alphas tried by the steering fallback of :meth:`Expander.union`.
-STEER_SAMPLES = 15
-_TAU = np.linspace(0.0, 1.0, 33)
-_CURV_S = np.linspace(0.0, 1.0, 17)
-#: Fewest pose pairs that :meth:`Expander.prefetch` sends to the array path of the
-#: heuristic optimal frame (fewer: the scalar path, pair by pair, is faster).
-PREFETCH_MIN_HEURISTIC = 12
-#: Positions (fractions of the union's span) sampled by the certain-hit test.
-HIT_SAMPLES = 9
-_HIT_S = np.linspace(0.0, 1.0, HIT_SAMPLES)
-
-
-def _wrap(a: float) -> float:
-    """Scalar wrap to ``(-pi, pi]`` (fast path of :func:`segplan.pose.wrap`)."""
-    a = math.fmod(a + math.pi, TWO_PI)
-    if a <= 0.0:
-        a += TWO_PI
-    return a - math.pi
-
-
-def _geometry(p0, p1):
-    """Chord length and angle, intrinsic headings and the feasible alpha interval, or None.
-
-    Scalar fast path of :func:`segplan.pose.intrinsic` and
-    :func:`segplan.pose.alpha_interval` (interval shrunk by ``ALPHA_MARGIN``); None for
-    coincident points or an empty interval (no cubic joins the poses).
-    """
-    dx, dy = p1[0] - p0[0], p1[1] - p0[1]
-    d = math.hypot(dx, dy)
-    if d <= 1e-9 * max(1.0, abs(p0[0]), abs(p0[1]), abs(p1[0]), abs(p1[1])):
-        return None
-    psi = math.atan2(dy, dx)
-    phi0, phi1 = _wrap(p0[2] - psi), _wrap(p1[2] - psi)
-    lo = -HALF_PI - min(phi0, phi1, 0.0) + ALPHA_MARGIN
-    hi = HALF_PI - max(phi0, phi1, 0.0) - ALPHA_MARGIN
-    if not hi > lo:
-        return None
-    return d, psi, phi0, phi1, lo, hi
 
 
 def clamped_spline_tangent(p0, point, p1) -> float:
@@ -183,7 +145,7 @@ def _iterate_pose(start, goal, px: float, py: float, base: float, w: float) -> P
         theta_s = clamped_spline_tangent(start, (px, py), goal)
     except ValueError:
         theta_s = base
-    return Pose(px, py, _wrap(base + w * _wrap(theta_s - base)))
+    return Pose(px, py, wrap_scalar(base + w * wrap_scalar(theta_s - base)))
 
 
 def outward_bisectors(polygon: np.ndarray) -> np.ndarray:
@@ -219,81 +181,6 @@ def tangent_vertices(polygon, point) -> tuple[int, int]:
     cy = sum(p[1] for p in pts) / len(pts)
     rel = [math.atan2(cx * y - cy * x, cx * x + cy * y) for x, y in pts]
     return max(range(len(rel)), key=rel.__getitem__), min(range(len(rel)), key=rel.__getitem__)
-
-
-def max_curvature(u: Union) -> float:
-    """Largest ``|curvature|`` of a union's rear path, as :meth:`Union.max_curvature`, faster.
-
-    Interior extrema of ``kappa = f'' / (1 + f'^2)^(3/2)`` solve
-    ``f''' (1 + f'^2) - 3 f' f''^2 = 0``; with ``f = c1 x + c2 x^2 + c3 x^3`` that is the
-    quartic (expanded by hand, checked against the polynomial product in the tests)::
-
-        -270 c3^3 x^4 - 360 c2 c3^2 x^3 - (156 c2^2 c3 + 72 c1 c3^2) x^2
-        - (48 c1 c2 c3 + 24 c2^3) x + 6 c3 (1 + c1^2) - 12 c1 c2^2 = 0.
-    """
-    _, c1, c2, c3 = u.coefficients
-    X = u.x_end
-    xs = [0.0, X]
-    coef = (
-        -270.0 * c3**3,
-        -360.0 * c2 * c3**2,
-        -(156.0 * c2 * c2 * c3 + 72.0 * c1 * c3 * c3),
-        -(48.0 * c1 * c2 * c3 + 24.0 * c2**3),
-        6.0 * c3 * (1.0 + c1 * c1) - 12.0 * c1 * c2 * c2,
-    )
-    if any(coef):
-        for r in np.roots(coef):
-            if abs(r.imag) < 1e-9 and 0.0 < r.real < X:
-                xs.append(float(r.real))
-    x = np.array(xs)
-    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
-    return float(np.max(np.abs(2.0 * c2 + 6.0 * c3 * x) / (1.0 + fp * fp) ** 1.5))
-
-
-@dataclass
-class ExpansionStats:
-    """Counters of one expansion engine (reset with :meth:`Expander.reset_stats`).
-
-    Attributes
-    ----------
-    iterations : list of (int, bool, bool)
-        For every vertex candidate: iterates used, success, whether it was "complete"
-        (one node passes the obstacle, both new unions free of it).
-    unions : int
-        Unions built (optimal reference system or shared one).
-    infeasible : int
-        Pose pairs for which no cubic exists (no feasible alpha, coincident points).
-    exact_checks : int
-        Calls of the exact test :func:`segplan.collision.collides`.
-    broad_rejections : int
-        Union-polygon pairs rejected by the bounding-box test alone.
-    certain_hits : int
-        Union-polygon pairs found colliding by a sample inside the polygon.
-    batched : int
-        Optimal reference systems computed in vectorised batches (:meth:`Expander.prefetch`).
-    curvature_exact : int
-        Unions whose curvature needed :meth:`Union.max_curvature` (the cheap bound failed).
-
-    Notes
-    -----
-    The workspace keeps its answers per union (:meth:`Workspace.facts`), so the collision
-    counters count distinct union-polygon pairs: a pair asked about again is not tested,
-    nor counted, again.
-    """
-
-    iterations: list = field(default_factory=list)
-    unions: int = 0
-    infeasible: int = 0
-    exact_checks: int = 0
-    broad_rejections: int = 0
-    certain_hits: int = 0
-    batched: int = 0
-    curvature_exact: int = 0
-
-    @property
-    def collision_checks(self) -> int:
-        """Union-polygon pairs decided (by the bounding box or the exact test)."""
-        return self.exact_checks + self.broad_rejections
 
 
 @dataclass(frozen=True)
@@ -358,307 +245,6 @@ class Successor:
     candidate: Candidate | None = None
 
 
-def _longd_scalar(d: float, phi0: float, phi1: float, alpha: float, L: float, rtol: float) -> float:
-    """:func:`segplan.cost.longd_intrinsic` of one union in floats (the same value, faster).
-
-    Formula [2] inside its domain, else Romberg on [1].
-    """
-    if in_domain(d, phi0, phi1, alpha, L):
-        return float(cost.longd_approx_intrinsic(d, phi0, phi1, alpha, L))
-    return float(cost.longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=rtol))
-
-
-def _edge_list(vertices) -> list[tuple[float, float, float, float]]:
-    """``(x_i, y_i, n_x, n_y)`` per vertex of a counter-clockwise polygon (Python floats).
-
-    ``n = (e_y, -e_x)`` is the outward normal of the edge ``e = v_{i+1} - v_i``, as in
-    :func:`segplan.world.segment_hits_polygon`.
-    """
-    out = []
-    for i, (x, y) in enumerate(vertices):
-        nx_, ny_ = vertices[(i + 1) % len(vertices)]
-        out.append((x, y, ny_ - y, -(nx_ - x)))
-    return out
-
-
-def _segment_hits(a, b, edges) -> bool:
-    """:func:`segplan.world.segment_hits_polygon` in scalar arithmetic (the same operations).
-
-    ``edges`` from :func:`_edge_list`; touching counts as a hit (separating axes).
-    """
-    ax, ay = a
-    bx, by = b
-    for x, y, nx, ny in edges:
-        if nx * (ax - x) + ny * (ay - y) > 0.0 and nx * (bx - x) + ny * (by - y) > 0.0:
-            return False
-    dx, dy = bx - ax, by - ay
-    pos = neg = True
-    for x, y, _, _ in edges:
-        side = dx * (y - ay) - dy * (x - ax)
-        pos = pos and side > 0.0
-        neg = neg and side < 0.0
-    return not (pos or neg)
-
-
-class _Facts:
-    """What a :class:`Workspace` has established about one union (kept per union object).
-
-    Every test of a union is a deterministic function of the union (and of the fixed
-    workspace), so its answer is computed once: the search meets the same union several
-    times (the direct union of a node as its ``h'`` and at its expansion; a candidate's
-    union against the offending obstacle, the others, then all of them).
-    """
-
-    __slots__ = ("union", "sweep", "curvature", "in_bounds", "near", "hits", "samples", "cost")
-
-    def __init__(self, union: Union):
-        self.union = union  # keeps the union alive, so its id is not reused while cached
-        self.sweep = None
-        self.curvature = None
-        self.in_bounds = None
-        self.near: dict = {}  # polygon -> frame abscissa of its nearest vertex, None if rejected
-        self.hits: dict = {}  # polygon -> touched
-        self.samples = None
-        self.cost = None
-
-
-class Workspace:
-    """Enlarged convex obstacles, bounds and robot limits, with cheap tests first.
-
-    Parameters
-    ----------
-    obstacles : sequence of (k, 2) arrays
-        Enlarged obstacles, strictly convex (as :attr:`segplan.Scenario.enlarged`,
-        already validated: they are wrapped as
-        :class:`segplan.collision.ConvexPolygon` without re-validation).
-    L : float
-        Robot length.
-    bounds : (xmin, ymin, xmax, ymax) or None
-        Free bounds (walls already moved inwards by the half-width).
-    max_curvature : float
-        Steering limit of the rear path, ``tan(max_steer) / L``.
-
-    Notes
-    -----
-    Order of the tests on a union (the paper's "quick checkings ... If it is not so the
-    more time-consuming routines are executed"):
-
-    1. all obstacles at once: the frame bounding box of each polygon against the frame
-       box of the swept segment (:class:`segplan.collision.Sweep`), one vectorised step;
-    2. a *certain hit*: a sample of the swept segment (rear point, front wheel and
-       middle of the robot at ``HIT_SAMPLES`` positions) strictly inside the polygon;
-    3. :func:`segplan.collision.collides` (the paper's ``d_c`` rejection, then the exact
-       event test) on the polygons left.
-    """
-
-    def __init__(self, obstacles, L: float, bounds=None, max_curvature: float = math.inf):
-        self.polygons = [np.ascontiguousarray(p, dtype=float) for p in obstacles]
-        self.convex = [collision.ConvexPolygon(p, check=False) for p in self.polygons]
-        self.polygons = [c.vertices for c in self.convex]  # counter-clockwise
-        self.L = float(L)
-        self.bounds = None if bounds is None else tuple(float(b) for b in bounds)
-        self.max_curvature = float(max_curvature)
-        self.stats = ExpansionStats()
-        self.collision_stats = collision.CollisionStats()
-        self._facts: dict = {}
-        self._checked_bounds = None
-        # circumscribed circles (centre of the bounding box, largest vertex distance), inflated
-        # by a relative margin so the broad phase never rejects a touching polygon
-        self._circles = [(c.centre[0], c.centre[1], c.radius * (1.0 + 1e-9) + 1e-9) for c in self.convex]
-        self._bbox = np.array([[*p.min(axis=0), *p.max(axis=0)] for p in self.polygons]).reshape(-1, 4)
-        self._bisectors = [outward_bisectors(p) for p in self.polygons]
-        # vertices as Python floats, for the scalar broad phase of :meth:`colliding`
-        self._vertex_lists = [[(float(x), float(y)) for x, y in p] for p in self.polygons]
-        # and with the (unnormalised) outward normal of the edge leaving each vertex, and the
-        # bounding boxes, for the scalar :meth:`pose_free`
-        self._edge_lists = [_edge_list(v) for v in self._vertex_lists]
-        self._bbox_list = [tuple(float(b) for b in row) for row in self._bbox]
-
-    # -- poses -------------------------------------------------------------------------
-    def pose_free(self, pose) -> bool:
-        """Is the robot's segment at ``pose`` clear of every obstacle and inside the bounds?"""
-        x, y, th = pose
-        bx, by = x + self.L * math.cos(th), y + self.L * math.sin(th)
-        a, b = (x, y), (bx, by)
-        if self.bounds is not None and not segment_in_bounds(a, b, self.bounds):
-            return False
-        if not self.polygons:
-            return True
-        lo_x, hi_x, lo_y, hi_y = min(x, bx), max(x, bx), min(y, by), max(y, by)
-        for i, (b0, b1, b2, b3) in enumerate(self._bbox_list):
-            near = b0 <= hi_x and b2 >= lo_x and b1 <= hi_y and b3 >= lo_y
-            if near and _segment_hits(a, b, self._edge_lists[i]):
-                return False
-        return True
-
-    # -- unions ------------------------------------------------------------------------
-    def curvature_ok(self, u: Union) -> bool:
-        """Is the rear path's curvature within the steering limit everywhere?
-
-        Cached per union; see :meth:`_curvature_ok`.
-        """
-        if not math.isfinite(self.max_curvature):
-            return True
-        f = self.facts(u)
-        if f.curvature is None:
-            f.curvature = self._curvature_ok(u)
-        return f.curvature
-
-    def _curvature_ok(self, u: Union) -> bool:
-        """:meth:`curvature_ok` without the cache.
-
-        Cheap sufficient bound first: ``|kappa| <= |f''|`` and ``f''`` is linear, so
-        ``max(|f''(0)|, |f''(X)|) <= kappa_max`` suffices; then a certain failure (the
-        curvature sampled at 17 abscissae exceeds the limit); then the same bound piece by
-        piece between the samples; otherwise the exact maximum (:func:`max_curvature`).
-        """
-        if not math.isfinite(self.max_curvature):
-            return True
-        _, _, c2, c3 = u.coefficients
-        X = u.x_end
-        if max(abs(2.0 * c2), abs(2.0 * c2 + 6.0 * c3 * X)) <= self.max_curvature:
-            return True
-        # a sampled curvature above the limit is a certain failure
-        c1 = u.coefficients[1]
-        x = X * _CURV_S
-        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
-        fpp = np.abs(2.0 * c2 + 6.0 * c3 * x)
-        if np.any(fpp > self.max_curvature * (1.0 + fp * fp) ** 1.5):
-            return False
-        # a certain pass: on each piece between samples |kappa| <= max|f''| / (1 + min f'^2)^1.5
-        # (f'' is linear, f' a parabola: its least |f'| is at an end, at its vertex or 0)
-        a, b = fp[:-1], fp[1:]
-        m = np.where(a * b <= 0.0, 0.0, np.minimum(np.abs(a), np.abs(b)))
-        if c3 != 0.0:
-            xv = -c2 / (3.0 * c3)
-            k = np.searchsorted(x, xv) - 1
-            if 0 <= k < len(m) and x[k] < xv < x[k + 1]:
-                m[k] = min(m[k], abs(c1 + (2.0 * c2 + 3.0 * c3 * xv) * xv))
-        if np.all(np.maximum(fpp[:-1], fpp[1:]) <= self.max_curvature * (1.0 + m * m) ** 1.5):
-            return True
-        self.stats.curvature_exact += 1
-        return max_curvature(u) <= self.max_curvature
-
-    def facts(self, u: Union) -> _Facts:
-        """The cached answers about union ``u`` (kept on the union's identity)."""
-        f = self._facts.get(id(u))
-        if f is None or f.union is not u:
-            if len(self._facts) > 4096:
-                self._facts.clear()
-            f = _Facts(u)
-            self._facts[id(u)] = f
-        return f
-
-    def sweep(self, u: Union) -> collision.Sweep:
-        """The per-union data of the collision tests (cached on the union's identity)."""
-        f = self.facts(u)
-        if f.sweep is None:
-            f.sweep = collision.Sweep(u)
-        return f.sweep
-
-    def in_bounds(self, u: Union) -> bool:
-        """Does the swept segment stay strictly inside the bounds? (cached per union)"""
-        if self.bounds is None:
-            return True
-        f = self.facts(u)
-        if f.in_bounds is None:
-            if self._checked_bounds is None:
-                self._checked_bounds = collision._bounds(self.bounds)  # validated once
-            f.in_bounds = collision._union_in_bounds(self.sweep(u), self._checked_bounds)
-        return f.in_bounds
-
-    def _samples(self, sw: collision.Sweep) -> tuple[np.ndarray, np.ndarray]:
-        """World points of the swept segment: rear, middle and front at ``HIT_SAMPLES`` positions."""
-        x, fx, ux, uy = sw.segment(_HIT_S)
-        L = sw.L
-        fr = np.concatenate((x, x + 0.5 * L * ux, x + L * ux))
-        fy = np.concatenate((fx, fx + 0.5 * L * uy, fx + L * uy))
-        return sw.x0 + sw.cos * fr - sw.sin * fy, sw.y0 + sw.sin * fr + sw.cos * fy
-
-    def _certain_hit(self, wx: np.ndarray, wy: np.ndarray, i: int) -> bool:
-        """A sample point strictly inside polygon ``i``: a collision for certain."""
-        c = self.convex[i]
-        g = np.multiply.outer(wx, c.normals[:, 0]) + np.multiply.outer(wy, c.normals[:, 1]) - c.offsets
-        return bool(np.any(np.all(g < 0.0, axis=1)))
-
-    def colliding(self, u: Union, first: bool = True, only=None) -> list[int]:
-        """Obstacles that the union's swept segment touches, in order along the path.
-
-        Parameters
-        ----------
-        u : Union
-        first : bool
-            Stop at the first colliding obstacle (the one met first along the path,
-            ordered by the frame abscissa of its nearest vertex).
-        only : iterable of int, optional
-            Test only these obstacles.
-        """
-        if not self.polygons:
-            return []
-        facts = self.facts(u)
-        sw = self.sweep(u)
-        known, hits = facts.near, facts.hits
-        x0, x1, y0, y1 = sw.box
-        c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
-        candidates = range(len(self.polygons)) if only is None else only
-        near = []
-        for i in candidates:
-            if i in known:  # decided by the broad phase before (pairs are counted once)
-                if known[i] is not None:
-                    near.append((known[i], i))
-                continue
-            known[i] = None
-            # the polygon's circumscribed circle against the frame box of the swept segment
-            gx, gy, r = self._circles[i]
-            dx, dy = gx - ox, gy - oy
-            fx, fy = c * dx + s * dy, c * dy - s * dx
-            ex = max(x0 - fx, 0.0, fx - x1)
-            ey = max(y0 - fy, 0.0, fy - y1)
-            if ex * ex + ey * ey > r * r:
-                self.stats.broad_rejections += 1
-                continue
-            # the polygon's frame bounding box against the same box (scalar arithmetic:
-            # a handful of vertices)
-            px, py = [], []
-            for x, y in self._vertex_lists[i]:
-                vx, vy = x - ox, y - oy
-                px.append(c * vx + s * vy)
-                py.append(c * vy - s * vx)
-            px_min = min(px)
-            if max(px) < x0 or px_min > x1 or max(py) < y0 or min(py) > y1:
-                self.stats.broad_rejections += 1
-                continue
-            known[i] = px_min
-            near.append((px_min, i))
-        if not near:
-            return []
-        near.sort()
-        idx = [i for _, i in near]
-        out = []
-        for i in idx:
-            hit = hits.get(i)
-            if hit is None:
-                if facts.samples is None:
-                    facts.samples = self._samples(sw)
-                wx, wy = facts.samples
-                hit = self._certain_hit(wx, wy, i)
-                if hit:
-                    self.stats.certain_hits += 1
-                else:
-                    self.stats.exact_checks += 1
-                    hit = collision.collides(sw, self.convex[i], check=False, stats=self.collision_stats)
-                hits[i] = hit
-            if hit:
-                out.append(int(i))
-                if first:
-                    break
-        return out
-
-    def union_free(self, u: Union) -> bool:
-        """Free of every obstacle, inside the bounds and within the steering limit."""
-        return self.curvature_ok(u) and self.in_bounds(u) and not self.colliding(u)
-
-
 class Expander:
     """Successors of nodes toward a goal (section "Generation of intermediate nodes").
 
@@ -687,11 +273,14 @@ class Expander:
         union hits another obstacle.
     steer_fallback : bool
         When the optimal reference system's cubic breaks the steering limit, use the
-        frame of least peak curvature instead (see :meth:`_steer`).
+        frame of least peak curvature instead (:meth:`segplan.links.LinkModel._steer`).
     slide : float
         Step along the obstacle's edge (units of ``L``) of the sliding iterates.
     all_obstacles : bool
         Candidates for every obstacle the direct union touches, not only the first.
+    links : LinkModel, optional
+        The link model (unions and their cost); by default one of ``workspace`` with
+        ``alpha_method`` and ``steer_fallback`` (which it then overrides).
 
     Notes
     -----
@@ -714,13 +303,12 @@ class Expander:
         steer_fallback: bool = True,
         slide: float = 0.5,
         all_obstacles: bool = False,
+        links: LinkModel | None = None,
     ):
         if version not in ("a", "b"):
             raise ValueError(
                 f"version must be 'a' (one shared reference system) or 'b' (one per piece), got {version!r}"
             )
-        if alpha_method not in ("heuristic", "exact"):
-            raise ValueError(f"alpha_method must be 'heuristic' or 'exact', got {alpha_method!r}")
         if isinstance(max_iterations, bool) or int(max_iterations) != max_iterations or max_iterations < 1:
             raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
         for name, value, lo in (("r0", r0, 0.0), ("growth", growth, 1.0), ("turn_radius", turn_radius, 1.0)):
@@ -730,9 +318,14 @@ class Expander:
             raise ValueError(f"spline_weight must lie in [0, 1], got {spline_weight!r}")
         if not turn_angles or not all(0.0 < a <= HALF_PI for a in turn_angles):
             raise ValueError(f"turn_angles must be angles in (0, pi/2] radians, got {turn_angles!r}")
+        if links is None:
+            links = LinkModel(workspace, alpha_method, steer_fallback)
+        elif links.ws is not workspace:
+            raise ValueError("links must be a LinkModel of the same workspace")
         self.ws = workspace
+        self.links = links
         self.version = version
-        self.alpha_method = alpha_method
+        self.alpha_method = links.alpha_method
         self.max_iterations = int(max_iterations)
         self.r0 = float(r0) * workspace.L
         self.growth = float(growth)
@@ -742,11 +335,10 @@ class Expander:
         self.turn_radius = float(turn_radius) * R
         self.turn_angles = tuple(float(a) for a in turn_angles)
         self.recursion = int(recursion)
-        self.steer_fallback = bool(steer_fallback)
+        self.steer_fallback = links.steer_fallback
         self.slide = float(slide) * workspace.L
         self.all_obstacles = bool(all_obstacles)
-        self._cache: dict = {}
-        self._alphas: dict = {}
+        self._bisectors = [outward_bisectors(p) for p in workspace.polygons]
         self._setup_cache: dict = {}
         self._tangent_cache: dict = {}
         self._approach: tuple | None = None
@@ -758,136 +350,10 @@ class Expander:
     def reset_stats(self) -> None:
         self.ws.stats = ExpansionStats()
 
-    # -- unions ------------------------------------------------------------------------
-    def union(self, p0: Pose, p1: Pose, frame_angle: float | None = None) -> Union | None:
-        """The cubic union p0 -> p1, or None if no cubic exists.
-
-        Parameters
-        ----------
-        frame_angle : float, optional
-            World angle of the reference system's x-axis (version "a"); by default the
-            optimal reference system (section "Optimal reference system"), cached per
-            pose pair.
-        """
-        key = (p0, p1, frame_angle)
-        if key in self._cache:
-            return self._cache[key]
-        u = self._make_union(p0, p1, frame_angle)
-        if len(self._cache) > 200_000:
-            self._cache.clear()
-        self._cache[key] = u
-        return u
-
-    def prefetch(self, pairs) -> None:
-        """Optimal reference systems of several pose pairs in one vectorised call.
-
-        :func:`segplan.frame.optimal_alpha_intrinsic` costs far less per pair on arrays
-        than on scalars for the exact method; the alphas are kept until :meth:`union` asks
-        for them. Pairs without a cubic or already known are skipped. The heuristic
-        method's scalar path is the faster one for fewer than
-        :data:`PREFETCH_MIN_HEURISTIC` pairs (about 20 us a pair against 0.25-0.4 ms a
-        call on arrays), so such batches are left to :meth:`union`, pair by pair. The two
-        paths agree to rounding (a few 1e-15 rad).
-        """
-        if self.alpha_method == "heuristic" and len(pairs) < PREFETCH_MIN_HEURISTIC:
-            return
-        keys, geos = [], []
-        for p0, p1 in pairs:
-            if (p0, p1, None) in self._cache or (p0, p1) in self._alphas:
-                continue
-            geo = _geometry(p0, p1)
-            if geo is not None:
-                keys.append((p0, p1))
-                geos.append(geo)
-        if len(keys) < 2:
-            return
-        d, _, phi0, phi1, _, _ = (np.array(v) for v in zip(*geos, strict=True))
-        try:
-            alphas = self._optimal_alpha(d, phi0, phi1)
-        except ValueError:
-            return
-        self.stats.batched += len(keys)
-        if len(self._alphas) > 10_000:
-            self._alphas.clear()
-        for key, a in zip(keys, np.atleast_1d(alphas), strict=True):
-            self._alphas[key] = float(a)
-
-    def _optimal_alpha(self, d, phi0, phi1):
-        """:func:`segplan.frame.optimal_alpha_intrinsic` of pairs from :func:`_geometry`.
-
-        Those are valid by construction (``d > 0``, finite, a feasible interval wider than
-        ``2 ALPHA_MARGIN``), so the heuristic method skips the re-validation (the same
-        values: :func:`segplan.frame.heuristic_alpha` is what the method calls).
-        """
-        if self.alpha_method == "heuristic" and 0.0 < self.ws.L < math.inf:
-            return heuristic_alpha(d, phi0, phi1, self.ws.L)
-        return optimal_alpha_intrinsic(d, phi0, phi1, self.ws.L, method=self.alpha_method)
-
-    def _make_union(self, p0, p1, frame_angle):
-        geo = _geometry(p0, p1)
-        if geo is None:
-            self.stats.infeasible += 1
-            return None
-        d, psi, phi0, phi1, lo, hi = geo
-        if frame_angle is None:
-            alpha = self._alphas.pop((p0, p1), None)
-            if alpha is None:
-                try:
-                    alpha = float(self._optimal_alpha(d, phi0, phi1))
-                except ValueError:
-                    self.stats.infeasible += 1
-                    return None
-        else:
-            alpha = _wrap(psi - frame_angle)
-        if not lo < alpha < hi:
-            self.stats.infeasible += 1
-            return None
-        self.stats.unions += 1
-        u = Union.from_intrinsic(p0, p1, alpha, self.ws.L, d, psi, phi0, phi1)
-        if frame_angle is None and self.steer_fallback and not self.ws.curvature_ok(u):
-            u = self._steer(p0, p1, d, psi, phi0, phi1, lo, hi) or u
-        return u
-
-    def _steer(self, p0, p1, d, psi, phi0, phi1, lo, hi) -> Union | None:
-        """Steering fallback: the frame of least sampled peak curvature, if it keeps the limit.
-
-        The optimal reference system minimises LONGD, not curvature; when its cubic breaks
-        the steering limit another alpha may keep it (our addition: the paper has no
-        steering limit). ``STEER_SAMPLES`` alphas across the feasible interval are scored by
-        their largest curvature on 33 abscissae (one vectorised evaluation); the best is
-        checked exactly.
-        """
-        alphas = lo + (hi - lo) * (np.arange(1, STEER_SAMPLES + 1) / (STEER_SAMPLES + 1))
-        X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alphas)
-        x = X[:, None] * _TAU
-        fp = c1[:, None] + (2.0 * c2[:, None] + 3.0 * c3[:, None] * x) * x
-        fpp = 2.0 * c2[:, None] + 6.0 * c3[:, None] * x
-        peak = np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=1)
-        k = int(np.argmin(peak))
-        if not peak[k] < self.ws.max_curvature:
-            return None
-        self.stats.unions += 1
-        u = Union.from_intrinsic(p0, p1, float(alphas[k]), self.ws.L, d, psi, phi0, phi1)
-        return u if self.ws.curvature_ok(u) else None
-
-    def link_cost(self, u: Union) -> float:
-        """LONGD of a union (formula [2] inside its domain, [1] outside: :func:`segplan.cost.longd`).
-
-        ``inf`` for a near-singular cubic whose integral [1] cannot be brought to the
-        error bound (such a union also breaks the steering limit). Cached per union.
-        """
-        f = self.ws.facts(u)
-        if f.cost is None:
-            try:
-                f.cost = _longd_scalar(u.d, u.phi0, u.phi1, u.alpha, u.L, LONGD_RTOL)
-            except RombergError:
-                f.cost = math.inf
-        return f.cost
-
     # -- intermediate nodes --------------------------------------------------------------
     def shared_frame(self, start: Pose, goal: Pose) -> float:
         """Version "a": the optimal frame of the direct union, else its chord's angle."""
-        u = self.union(start, goal)
+        u = self.links.union(start, goal)
         if u is not None:
             return u.frame_angle
         return math.atan2(goal[1] - start[1], goal[0] - start[0])
@@ -920,7 +386,7 @@ class Expander:
         vertex = ccw_s if side > 0 else cw_s
         complete = not subgoal and vertex == (cw_g if side > 0 else ccw_g)
         v = poly[vertex]
-        bx, by = self.ws._bisectors[polygon][vertex]
+        bx, by = self._bisectors[polygon][vertex]
         # perpendicular to the bisectrix, clockwise around the obstacle for side +1
         theta_perp = math.atan2(-bx, by) if side > 0 else math.atan2(bx, -by)
         # direction of the edge that leaves the vertex in the direction of travel
@@ -1020,7 +486,7 @@ class Expander:
         """
         if not self.ws.pose_free(pose):
             return "pose"
-        u_in = self.union(start, pose, frame)
+        u_in = self.links.union(start, pose, frame)
         if u_in is None:
             return "infeasible_in"
         if not self.ws.curvature_ok(u_in):
@@ -1029,7 +495,7 @@ class Expander:
             return "collision"
         u_out = None
         if complete:
-            u_out = self.union(pose, goal, frame)
+            u_out = self.links.union(pose, goal, frame)
             if u_out is None:
                 return "infeasible_out"
             if not self.ws.curvature_ok(u_out):
@@ -1050,7 +516,7 @@ class Expander:
                 # centre at the side, point after turning by beta
                 cx, cy = x - side * R * math.sin(th), y + side * R * math.cos(th)
                 t = th + side * beta
-                out.append(Pose(cx + side * R * math.sin(t), cy - side * R * math.cos(t), _wrap(t)))
+                out.append(Pose(cx + side * R * math.sin(t), cy - side * R * math.cos(t), wrap_scalar(t)))
         return out
 
     def approach_states(self, goal: Pose) -> list[tuple[Pose, Union]]:
@@ -1064,16 +530,16 @@ class Expander:
         """
         if self._approach is not None and self._approach[0] == goal:
             return self._approach[1]
-        back = Pose(goal.x, goal.y, _wrap(goal.theta + math.pi))
-        poses = [Pose(p.x, p.y, _wrap(p.theta + math.pi)) for p in self.turn_states(back)]
+        back = Pose(goal.x, goal.y, wrap_scalar(goal.theta + math.pi))
+        poses = [Pose(p.x, p.y, wrap_scalar(p.theta + math.pi)) for p in self.turn_states(back)]
         c, s = math.cos(goal.theta), math.sin(goal.theta)
         poses.append(Pose(goal.x - 2.0 * self.ws.L * c, goal.y - 2.0 * self.ws.L * s, goal.theta))
         out = []
-        self.prefetch([(p, goal) for p in poses])
+        self.links.prefetch([(p, goal) for p in poses])
         for pose in poses:
             if not self.ws.pose_free(pose):
                 continue
-            u = self.union(pose, goal)
+            u = self.links.union(pose, goal)
             if u is not None and self.ws.union_free(u):
                 out.append((pose, u))
         self._approach = (goal, out)
@@ -1082,7 +548,7 @@ class Expander:
     # -- successors --------------------------------------------------------------------
     def direct(self, node: Pose, goal: Pose) -> Union | None:
         """The direct union node->goal in its optimal reference system (cached)."""
-        return self.union(node, goal)
+        return self.links.union(node, goal)
 
     def successors(self, node: Pose, goal: Pose, turns: bool = True) -> list[Successor]:
         """Successors of ``node`` in the on-line graph, toward ``goal``.
@@ -1116,7 +582,7 @@ class Expander:
         if self.version == "b":
             # both sides' first estimates (usually accepted) in one vectorised batch
             firsts = [self.first_estimate(node, target, polygon, side, subgoal) for side in (1, -1)]
-            self.prefetch([(node, p) for p in firsts] + [(p, target) for p in firsts])
+            self.links.prefetch([(node, p) for p in firsts] + [(p, target) for p in firsts])
         out = []
         for side in (1, -1):
             cand = self.intermediate(node, target, polygon, side, subgoal)
@@ -1136,11 +602,11 @@ class Expander:
     def _approaches(self, node: Pose, goal: Pose) -> list[Successor]:
         out = []
         states = self.approach_states(goal)
-        self.prefetch([(node, p) for p, _ in states])
+        self.links.prefetch([(node, p) for p, _ in states])
         for i, (pose, _) in enumerate(states):
             if pose == node:
                 continue
-            u = self.union(node, pose)
+            u = self.links.union(node, pose)
             if u is not None and self.ws.union_free(u):
                 out.append(Successor(pose, u, "approach", ("approach", i)))
         return out
@@ -1149,11 +615,11 @@ class Expander:
         out = []
         q = 0.25 * self.ws.L
         states = self.turn_states(node)
-        self.prefetch([(node, p) for p in states])
+        self.links.prefetch([(node, p) for p in states])
         for pose in states:
             if not self.ws.pose_free(pose):
                 continue
-            u = self.union(node, pose)
+            u = self.links.union(node, pose)
             if u is None or not self.ws.union_free(u):
                 continue
             key = ("turn", round(pose.x / q), round(pose.y / q), round(pose.theta / (math.pi / 8)))

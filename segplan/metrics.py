@@ -2,7 +2,7 @@
 
 A path is a dense sequence of rear-axle poses ``(x, y, theta)``, an ``(n, 3)`` array
 (A and the heading of A->B, radians), whatever planner produced it: a segplan
-:class:`~segplan.search.Plan` (:func:`plan_poses` samples its unions), an OMPL path
+:class:`~segplan.path.Plan` (:func:`plan_poses` samples its unions), an OMPL path
 (:func:`se2_poses` reads its states), an analytic curve in a test. :func:`measure_path`
 returns a :class:`PathMetrics`:
 
@@ -32,7 +32,7 @@ returns a :class:`PathMetrics`:
   given polygons and walls, **in the planning model**: pass the obstacles *enlarged* by
   the robot's half-width and the walls *shrunk* by it (``scenario.enlarged``,
   ``scenario.free_bounds``; :func:`measure_scenario_path` does). Because the enlarged
-  polygons contain the exact Minkowski sum (:func:`segplan.world.enlarge_polygon`), the
+  polygons contain the exact Minkowski sum (:func:`segplan.geometry.enlarge_polygon`), the
   real gap between the robot's body and the raw obstacles is at least this, and at most
   this plus the enlargement's excess (``0.0824 half_width`` by default). Negative means
   a sample lies outside the walls;
@@ -55,7 +55,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .pose import as_poses, check_length
+from .geometry import check_bounds
+from .pose import as_poses, check_length, wrap
 from .union import Union
 
 __all__ = ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses", "se2_poses", "union_poses"]
@@ -89,23 +90,6 @@ def _polyline_lengths(points: np.ndarray) -> np.ndarray:
     return np.hypot(*np.diff(points, axis=0).T)
 
 
-def _wrap(a: np.ndarray) -> np.ndarray:
-    """Angles to ``[-pi, pi)``."""
-    return np.mod(a + math.pi, 2.0 * math.pi) - math.pi
-
-
-def _check_bounds(bounds) -> tuple[float, float, float, float] | None:
-    if bounds is None:
-        return None
-    try:
-        b = tuple(float(v) for v in bounds)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax) or None, got {bounds!r}") from exc
-    if len(b) != 4 or not all(math.isfinite(v) for v in b) or not (b[0] < b[2] and b[1] < b[3]):
-        raise ValueError(f"bounds must be finite (xmin, ymin, xmax, ymax) with min < max, got {bounds!r}")
-    return b  # type: ignore[return-value]
-
-
 def _curvature(A: np.ndarray, theta: np.ndarray, scale: float):
     """Signed steering curvature per interval, and the number of reversals.
 
@@ -121,7 +105,7 @@ def _curvature(A: np.ndarray, theta: np.ndarray, scale: float):
     """
     dA = np.diff(A, axis=0)
     ds = np.hypot(dA[:, 0], dA[:, 1])
-    dth = _wrap(np.diff(theta))
+    dth = wrap(np.diff(theta))
     moving = ds > 1e-12 * scale
     if np.any(~moving & (np.abs(dth) > 1e-9)):
         return np.array([math.inf]), 0
@@ -192,7 +176,7 @@ def measure_path(
     if P.ndim != 2 or P.shape[0] < 2:
         raise ValueError(f"poses must be an (n, 3) array with n >= 2, got shape {P.shape}")
     L = check_length(L)
-    b = _check_bounds(bounds)
+    b = None if bounds is None else check_bounds(bounds)
     if jump_tol is None:
         jump_tol = 0.1 / L
     elif not (isinstance(jump_tol, int | float) and math.isfinite(jump_tol) and jump_tol > 0):

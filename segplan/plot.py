@@ -24,11 +24,17 @@ from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Rectangle
 
 from .cost import longd_exact
+from .geometry import check_bounds
 from .pose import Pose, as_pose, check_length, feasible_alpha_interval, intrinsic
 from .union import Union
+from .world import Scenario
 
 __all__ = [
+    "FRONT_STYLE",
+    "REAR_STYLE",
+    "ROBOT_STYLE",
     "plot_bounds",
+    "plot_floor",
     "plot_longd",
     "plot_plan",
     "plot_polygons",
@@ -283,16 +289,58 @@ def plot_bounds(bounds: Sequence[float], ax: Axes | None = None, *, color: str =
     ValueError
         Not four finite numbers with ``xmin < xmax`` and ``ymin < ymax``.
     """
-    try:
-        b = [float(v) for v in bounds]
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax), got {bounds!r}") from exc
-    if len(b) != 4 or not all(math.isfinite(v) for v in b) or not (b[0] < b[2] and b[1] < b[3]):
-        raise ValueError(f"bounds must be finite (xmin, ymin, xmax, ymax) with min < max, got {bounds!r}")
+    b = check_bounds(bounds)
     ax = _axes(ax)
     width, height = b[2] - b[0], b[3] - b[1]
     ax.add_patch(Rectangle((b[0], b[1]), width, height, fill=False, edgecolor=color, linewidth=1.5))
     ax.autoscale_view()
+    return _plane(ax)
+
+
+def plot_floor(
+    scenario: Scenario,
+    ax: Axes | None = None,
+    *,
+    enlarged: tuple[str, str] = ("0.85", "0.25"),
+    obstacles: tuple[str, str] = ("0.55", "0.25"),
+    bounds: bool = True,
+    poses: bool = True,
+    pose_color: str = "0.2",
+) -> Axes:
+    """Draw a scenario's floor: walls, enlarged obstacles, obstacles, start and goal.
+
+    The planning model of section "Results. Graph-search": the obstacles (darker) inside
+    their enlargement by the robot's half-width (lighter), in which the segment A->B is
+    planned, and the robot at start and goal (:func:`plot_pose`).
+
+    Parameters
+    ----------
+    scenario : segplan.Scenario
+    enlarged, obstacles : (facecolor, edgecolor)
+        Colours of the enlarged and of the given obstacles (legend labels "enlarged
+        obstacle" and "obstacle").
+    bounds : bool
+        Outline the walls (if the scenario has any, :func:`plot_bounds`).
+    poses : bool
+        Draw the robot at start and goal, in ``pose_color``.
+
+    Raises
+    ------
+    ValueError
+        ``scenario`` is not a :class:`segplan.Scenario`.
+    """
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    ax = _axes(ax)
+    if bounds and scenario.bounds is not None:
+        plot_bounds(scenario.bounds, ax)
+    plot_polygons(
+        scenario.enlarged, ax, facecolor=enlarged[0], edgecolor=enlarged[1], label="enlarged obstacle"
+    )
+    plot_polygons(scenario.obstacles, ax, facecolor=obstacles[0], edgecolor=obstacles[1], label="obstacle")
+    if poses:
+        for pose in (scenario.start, scenario.goal):
+            plot_pose(pose, scenario.L, ax, color=pose_color)
     return _plane(ax)
 
 

@@ -26,6 +26,7 @@ import numpy as np
 HALF_PI = 0.5 * math.pi
 
 __all__ = [
+    "wrap_scalar",
     "HALF_PI",
     "Intrinsic",
     "Pose",
@@ -73,7 +74,7 @@ def wrap(angle):
     Every angle difference in segplan (intrinsic headings, heading changes) is wrapped
     here, to the half-open interval ``(-pi, pi]``: ``-pi`` maps to ``+pi``, so a reversal
     (a goal heading opposite to the chord) reads ``+pi``. The scalar fast path
-    :func:`_wrap_scalar` performs the same operations.
+    :func:`wrap_scalar` performs the same operations.
     """
     a = np.asarray(angle, dtype=float)
     a = a - (2.0 * math.pi) * np.round(a / (2.0 * math.pi))  # in [-pi, pi] up to rounding
@@ -164,7 +165,7 @@ def intrinsic(p0, p1) -> Intrinsic:
     return out
 
 
-def _wrap_scalar(a: float) -> float:
+def wrap_scalar(a: float) -> float:
     """:func:`wrap` of one float, the same operations (``round`` halves to even like numpy's)."""
     a = a - (2.0 * math.pi) * round(a / (2.0 * math.pi))
     if a <= -math.pi:
@@ -190,7 +191,7 @@ def _intrinsic_scalar(p0, p1) -> Intrinsic | None:
     if d <= 1e-12 * max(abs(x0), abs(y0), abs(x1), abs(y1), 1.0):
         return None
     psi = float(np.arctan2(dy, dx))
-    return Intrinsic(d, psi, _wrap_scalar(t0 - psi), _wrap_scalar(t1 - psi))
+    return Intrinsic(d, psi, wrap_scalar(t0 - psi), wrap_scalar(t1 - psi))
 
 
 def alpha_interval(phi0, phi1):

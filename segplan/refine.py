@@ -36,16 +36,19 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
 from .cost import checked_intrinsic, longd_exact_intrinsic, longd_gauss_intrinsic
-from .expansion import ALPHA_MARGIN, Expander, Workspace
 from .frame import heuristic_alpha
+from .links import ALPHA_MARGIN, LinkModel
+from .path import Plan, Refinement
 from .pose import Pose, alpha_interval, wrap
 from .union import cubic_coefficients
+from .validity import Workspace
 from .world import Scenario
+
+__all__ = ["certain_failures", "refine", "refine_with"]
 
 #: Moves of a node in its own frame: (forward, left, turn) in units of the node's step
 #: (turns in units of ``step / L`` radians).
@@ -70,38 +73,6 @@ MIN_GAIN = 1e-3
 CHECKS_PER_UPDATE = 1
 #: Fractions of a link's frame span sampled by :func:`certain_failures`.
 SAMPLES = np.linspace(0.0, 1.0, 9)
-
-
-@dataclass(frozen=True)
-class Refinement:
-    """What :func:`refine` did.
-
-    Attributes
-    ----------
-    cost_before, cost_after : float
-        Exact LONGD [1] of the plan before and after.
-    nodes_before, nodes_after : int
-        Number of nodes (start and goal included).
-    shortcuts, splits, moves : int
-        Nodes removed by shortcuts, nodes added by splits, accepted local moves.
-    updates : int
-        Node updates tried by the local search.
-    checked : int
-        Unions checked exactly (steering limit, walls, obstacles).
-    seconds : float
-        Wall time of the refinement alone.
-    """
-
-    cost_before: float
-    cost_after: float
-    nodes_before: int
-    nodes_after: int
-    shortcuts: int
-    splits: int
-    moves: int
-    updates: int
-    checked: int
-    seconds: float
 
 
 def _check_options(rounds, split, min_step, first_step, max_sweeps):
@@ -174,8 +145,6 @@ def refine(
     and when checked: one objective, so that a screened improvement is a real one. The
     returned ``cost`` is Romberg's [1], as for every plan.
     """
-    from .search import Plan
-
     if not isinstance(plan, Plan):
         raise ValueError(f"plan must be a segplan.Plan, got {type(plan).__name__}")
     if not isinstance(scenario, Scenario):
@@ -191,7 +160,7 @@ def refine(
             raise ValueError(f"plan's union {i} is not free in this scenario (a plan of another scenario?)")
     return refine_with(
         plan,
-        Expander(ws),
+        LinkModel(ws),
         rounds=rounds,
         split=split,
         first_step=first_step,
@@ -201,14 +170,14 @@ def refine(
 
 
 def refine_with(
-    plan, ex: Expander, *, rounds=1, split=3.0, first_step=0.5, min_step=1.0 / 16.0, max_sweeps=6
+    plan, links: LinkModel, *, rounds=1, split=3.0, first_step=0.5, min_step=1.0 / 16.0, max_sweeps=6
 ):
-    """:func:`refine` with the search's own :class:`Expander` (its caches are reused)."""
+    """:func:`refine` with the search's own link model (its caches are reused)."""
     _check_options(rounds, split, min_step, first_step, max_sweeps)
     if plan.refinement is not None:
         raise ValueError("plan is already refined")
     t0 = time.perf_counter()
-    r = _Refiner(ex)
+    r = _Refiner(links)
     nodes = list(plan.nodes)
     kinds = list(plan.kinds)
     for u in plan.unions:  # the search checked them: known free
@@ -217,7 +186,7 @@ def refine_with(
     original = set(nodes)
     nodes, kinds = r.shortcut(nodes, kinds)
     for _ in range(int(rounds)):
-        nodes, kinds = r.split(nodes, kinds, split * ex.ws.L)
+        nodes, kinds = r.split(nodes, kinds, split * links.L)
         nodes = r.polish(nodes, first_step, min_step, int(max_sweeps))
         kinds = [k if nodes[i] in original else "refined" for i, k in enumerate(kinds)]
         nodes, kinds = r.shortcut(nodes, kinds)
@@ -254,9 +223,10 @@ def refine_with(
 class _Refiner:
     """The state of one refinement: checked links and counters."""
 
-    def __init__(self, ex: Expander):
-        self.ex = ex
-        self.L = ex.ws.L
+    def __init__(self, links: LinkModel):
+        self.links = links
+        self.ws = links.ws
+        self.L = links.L
         self.known: dict = {}  # (p0, p1) -> (union, cost) of a checked free link, or (None, inf)
         self.removed = self.added = self.moves = self.updates = self.checked = 0
 
@@ -266,8 +236,8 @@ class _Refiner:
         out = self.known.get((a, b))
         if out is None:
             self.checked += 1
-            u = self.ex.union(a, b)
-            if u is None or not self.ex.ws.union_free(u):
+            u = self.links.union(a, b)
+            if u is None or not self.ws.union_free(u):
                 out = (None, math.inf)
             else:
                 out = (u, self.cost(u))
@@ -299,7 +269,7 @@ class _Refiner:
             dd, p0, p1 = d[ok], phi0[ok], phi1[ok]
             alpha = np.atleast_1d(heuristic_alpha(dd, p0, p1, self.L))
             cost = longd_gauss_intrinsic(dd, p0, p1, alpha, self.L)
-            bad = certain_failures(self.ex.ws, A[ok], psi[ok] - alpha, *cubic_coefficients(dd, p0, p1, alpha))
+            bad = certain_failures(self.ws, A[ok], psi[ok] - alpha, *cubic_coefficients(dd, p0, p1, alpha))
             out[ok] = np.where(bad, math.inf, cost)
         return out
 
@@ -422,7 +392,7 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     abscissae, exceeds the steering limit, or if a sampled point of the swept segment
     (rear point, middle, front wheel) lies outside the free bounds or strictly inside an
     enlarged obstacle. The converse does not hold: a link with no certain failure must
-    still be checked (:meth:`segplan.expansion.Workspace.union_free`).
+    still be checked (:meth:`segplan.validity.Workspace.union_free`).
 
     Parameters
     ----------
@@ -449,7 +419,7 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     if ws.bounds is not None:
         xmin, ymin, xmax, ymax = ws.bounds
         bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
-    for poly, (x0, y0, x1, y1) in zip(ws.convex, ws._bbox_list, strict=True):
+    for poly, (x0, y0, x1, y1) in zip(ws.convex, ws.boxes, strict=True):
         near = (wx > x0) & (wx < x1) & (wy > y0) & (wy < y1)  # inside the box: worth the edges
         if not near.any():
             continue
@@ -462,6 +432,3 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
         )
         bad[k[np.all(g < 0.0, axis=1)]] = True  # strictly inside every edge
     return bad
-
-
-__all__ = ["Refinement", "refine"]

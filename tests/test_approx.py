@@ -410,6 +410,6 @@ def test_planner_links_records_the_search_link_costs():
         df["d_over_L"].to_numpy(), *np.radians(df[["phi0_deg", "phi1_deg", "alpha_deg"]].to_numpy().T), 1.0
     )
     np.testing.assert_array_equal(df["in_domain"].to_numpy(), expected)
-    # the planner runs unchanged once the recording is over
-    assert segplan.expansion.Expander.link_cost.__name__ == "link_cost"
-    assert "planner_links" not in segplan.expansion.Expander.link_cost.__qualname__
+    # the observer only watches: the plan is the one plan_scenario returns
+    observed = segplan.api.plan_scenario_observed(sc, lambda u, c: None)
+    assert observed.cost == plan.cost and observed.nodes == plan.nodes

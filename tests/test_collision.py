@@ -21,6 +21,8 @@ from hypothesis import strategies as st
 import segplan
 from segplan import Union
 from segplan import collision as col
+from segplan import geometry as geo
+from segplan import sweep as swp
 from segplan.pose import alpha_interval
 
 N_DENSE = 2001
@@ -160,7 +162,7 @@ def random_pairs(seed: int, n: int):
         kind = KINDS[len(out) % len(KINDS)]
         poly = random_polygon(rng, u, kind)
         try:
-            P = col.ConvexPolygon(poly)
+            P = geo.ConvexPolygon(poly)
         except ValueError:  # a hull that came out degenerate
             continue
         out.append((kind, u, poly, P))
@@ -178,7 +180,7 @@ def test_zero_missed_collisions_and_genuine_false_alarms(pairs):
     events_misses, events_alarms = [], 0
     worst = 0.0
     for kind, u, poly, P in pairs:
-        sw = col.Sweep(u)
+        sw = swp.Sweep(u)
         reject, tol = sw.quick_reject(P)
         ours = col.collision_witness(sw, P)
         ref = dense_collides(u, poly)
@@ -243,14 +245,14 @@ def test_front_wheel_dips_through_one_edge():
     top_rear, top_front = A[:, 1].max(), B[:, 1].max()
     assert top_front > top_rear + 0.05
     i = int(np.argmax(B[:, 1]))
-    sw = col.Sweep(u)
+    sw = swp.Sweep(u)
     for depth, expect in ((1e-3, True), (1e-7, True), (0.0, True), (-1e-6, False)):
         y = top_front - depth
         box = np.array(
             [[B[i, 0] - 0.3, y], [B[i, 0] + 0.3, y], [B[i, 0] + 0.3, y + 1], [B[i, 0] - 0.3, y + 1]]
         )
         assert col.collides(u, box) is expect, depth
-        assert (col._events(sw, *sw.local(col.ConvexPolygon(box)), 1e-8) is not None) is expect, depth
+        assert (col._events(sw, *sw.local(geo.ConvexPolygon(box)), 1e-8) is not None) is expect, depth
 
 
 def test_rear_path_touches_a_vertex_inside_a_bend():
@@ -262,12 +264,12 @@ def test_rear_path_touches_a_vertex_inside_a_bend():
     d = (B - A) / u.L
     inner = np.array([d[1], -d[0]])  # right of the heading: the inner side of this left-to-right arc
     assert u.second_derivative(x0) < 0
-    sw = col.Sweep(u)
+    sw = swp.Sweep(u)
     for delta, expect in ((0.0, True), (-1e-9, True), (1e-6, False)):
         v = A + delta * inner
         tri = np.array([v, v + 0.5 * (inner + 0.5 * d), v + 0.5 * (inner - 0.5 * d)])
         assert col.collides(u, tri) is expect, delta
-        assert (col._events(sw, *sw.local(col.ConvexPolygon(tri)), 1e-8) is not None) is expect, delta
+        assert (col._events(sw, *sw.local(geo.ConvexPolygon(tri)), 1e-8) is not None) is expect, delta
 
 
 def test_start_pose_touched_from_behind():
@@ -290,8 +292,8 @@ def test_polygon_enveloped_between_paths():
     assert shapely.distance(shapely.LineString(Ad), P) > 0.05
     assert shapely.distance(shapely.LineString(Bd), P) > 0.05
     assert col.collides(u, tri)
-    sw = col.Sweep(u)
-    assert col._events(sw, *sw.local(col.ConvexPolygon(tri)), 1e-9) is not None
+    sw = swp.Sweep(u)
+    assert col._events(sw, *sw.local(geo.ConvexPolygon(tri)), 1e-9) is not None
 
 
 def test_vertex_grazes_segment_at_inflection():
@@ -316,8 +318,8 @@ def test_vertex_grazes_segment_at_inflection():
         v = V + delta * out
         tri = np.array([v, v + 0.3 * (out + 0.8 * d), v + 0.3 * (out - 0.8 * d)])
         assert col.collides(u, tri) is expect, delta
-        sw = col.Sweep(u)
-        assert (col._events(sw, *sw.local(col.ConvexPolygon(tri)), 1e-8) is not None) is expect, delta
+        sw = swp.Sweep(u)
+        assert (col._events(sw, *sw.local(geo.ConvexPolygon(tri)), 1e-8) is not None) is expect, delta
 
 
 def test_start_and_end_poses():
@@ -344,7 +346,7 @@ def test_pose_collides_matches_shapely():
             if abs(e[0] * w[1] - e[1] * w[0]) < 1e-6:
                 continue
         ref = shapely.intersects(shapely.LineString([A, B]), shapely.Polygon(poly))
-        got = col.pose_collides(pose, L, poly)
+        got = geo.pose_collides(pose, L, poly)
         if got != ref:  # only within the touching tolerance
             assert got and shapely.distance(shapely.LineString([A, B]), shapely.Polygon(poly)) < 1e-8
 
@@ -374,11 +376,11 @@ def test_union_in_bounds_matches_dense_sampling():
 
 
 def test_pose_in_bounds():
-    assert col.pose_in_bounds((1, 1, 0), 1.0, (0, 0, 3, 3))
-    assert not col.pose_in_bounds((1, 1, 0), 2.0, (0, 0, 3, 3))  # B on the wall
-    assert not col.pose_in_bounds((0, 1, 0), 1.0, (0, 0, 3, 3))  # A on the wall
+    assert geo.pose_in_bounds((1, 1, 0), 1.0, (0, 0, 3, 3))
+    assert not geo.pose_in_bounds((1, 1, 0), 2.0, (0, 0, 3, 3))  # B on the wall
+    assert not geo.pose_in_bounds((0, 1, 0), 1.0, (0, 0, 3, 3))  # A on the wall
     with pytest.raises(ValueError, match="bounds"):
-        col.pose_in_bounds((1, 1, 0), 1.0, (0, 0, -3, 3))
+        geo.pose_in_bounds((1, 1, 0), 1.0, (0, 0, -3, 3))
 
 
 # -- validation ---------------------------------------------------------------------------------------
@@ -386,11 +388,11 @@ def test_pose_in_bounds():
     ("poly", "message"),
     [
         ([[0, 0], [1, 0]], "at least 3 vertices"),
-        ([[0, 0], [1, 0], [np.nan, 1]], "vertex 2 is not finite"),
-        ([[0, 0], [1, 0], [np.inf, 1]], "not finite"),
+        ([[0, 0], [1, 0], [np.nan, 1]], "vertex 2: coordinates must be finite"),
+        ([[0, 0], [1, 0], [np.inf, 1]], "must be finite"),
         ([[0, 0], [2, 0], [1, 0.2], [2, 2], [0, 2]], "not convex"),
         ([[0, 0], [1, 1], [1, 0], [0, 1]], "not convex"),  # bow-tie
-        ([[0, 0], [1, 0], [1, 0], [0, 1]], "coincide"),
+        ([[0, 0], [1, 0], [1, 0], [0, 1]], "vertex 2 repeats vertex 1"),
         ([[0, 0], [1, 0], [2, 0], [1, 1]], "collinear"),
         (ngon((0, 0), 1, 5, 0)[[0, 2, 4, 1, 3]], "self-intersecting"),  # pentagram
         ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], "shape"),
@@ -399,14 +401,14 @@ def test_pose_in_bounds():
 )
 def test_validation_rejects(poly, message):
     with pytest.raises(ValueError, match=message):
-        col.validate_polygon(poly)
+        geo.check_convex_polygon(poly)
     with pytest.raises(ValueError, match=message):
         col.collides(s_union(), poly)
 
 
 def test_orientation_and_prepared_polygons():
     sq = np.array([[0.0, 0], [1, 0], [1, 1], [0, 1]])
-    ccw, cw = col.ConvexPolygon(sq), col.ConvexPolygon(sq[::-1])
+    ccw, cw = geo.ConvexPolygon(sq), geo.ConvexPolygon(sq[::-1])
     assert np.array_equal(ccw.vertices, cw.vertices)
     assert np.allclose(ccw.normals @ ccw.vertices.mean(axis=0) - ccw.offsets, -0.5)
     with pytest.raises(AttributeError):
@@ -415,8 +417,8 @@ def test_orientation_and_prepared_polygons():
     for shift in ((2, -0.2), (2, 3), (-3, 0)):
         p = sq * 0.3 + shift
         r = col.collides(u, p)
-        assert col.collides(u, col.ConvexPolygon(p)) == r == col.collides(u, p[::-1], check=False)
-    # the validation cache is keyed by content: a mutated array is checked again
+        assert col.collides(u, geo.ConvexPolygon(p)) == r == col.collides(u, p[::-1], check=False)
+    # no validation cache: a mutated array is checked again
     arr = sq.copy()
     col.collides(u, arr)
     arr[2] = (0.2, 0.2)
@@ -434,15 +436,10 @@ def test_stats_and_exports():
     assert (st_.calls, st_.rejected, st_.exact) == (2, 1, 1)
     st_.reset()
     assert st_.calls == 0
-    for name in (
-        "collides",
-        "union_free",
-        "union_in_bounds",
-        "pose_collides",
-        "ConvexPolygon",
-        "CollisionStats",
-    ):
+    for name in ("collides", "union_free", "union_in_bounds", "CollisionStats"):
         assert getattr(segplan, name) is getattr(col, name)
+    for name in ("pose_collides", "pose_in_bounds", "ConvexPolygon"):
+        assert getattr(segplan, name) is getattr(geo, name)
 
 
 # -- numerical kernels ------------------------------------------------------------------------------------
@@ -453,7 +450,7 @@ def test_stats_and_exports():
 )
 def test_cubic_points_find_real_roots(roots, scale, sign):
     a3, a2, a1, a0 = np.poly(roots) * scale * sign
-    got = col._cubic_points(np.array([a3]), np.array([a2]), np.array([a1]), np.array([a0]))[0]
+    got = swp.cubic_points(np.array([a3]), np.array([a2]), np.array([a1]), np.array([a0]))[0]
     for r in roots:
         if 0.0 <= r <= 1.0:
             # each root in [0, 1] is matched by a candidate where the cubic is tiny
@@ -467,12 +464,12 @@ def test_quick_rejection_is_sound():
     rng = np.random.default_rng(5)
     for _ in range(400):
         u = random_union(rng)
-        sw = col.Sweep(u)
+        sw = swp.Sweep(u)
         x = rng.uniform(0, u.x_end)
         A, B = (p[0] for p in segments_at(u, [x]))
         c = A + rng.normal(size=2) * u.L * 3
         poly = ngon(c, u.L * rng.uniform(0.05, 1), int(rng.integers(3, 8)), rng.uniform(0, 7))
-        if sw.quick_reject(col.ConvexPolygon(poly))[0]:
+        if sw.quick_reject(geo.ConvexPolygon(poly))[0]:
             P = shapely.Polygon(poly)
             Ad, Bd = segments_at(u, u.xs(N_DENSE))
             assert shapely.distance(shapely.linestrings(np.stack((Ad, Bd), 1)), P).min() > 0

@@ -11,17 +11,20 @@ import numpy as np
 import pytest
 
 from segplan import collision, cost, random_world
-from segplan.expansion import (
-    LONGD_RTOL,
-    Expander,
-    Workspace,
-    _edge_list,
-    _longd_scalar,
-    _segment_hits,
-)
+from segplan.cost import longd_intrinsic_scalar
 from segplan.frame import _exponents, _features, heuristic_alpha, heuristic_coefficients
+from segplan.geometry import (
+    ConvexPolygon,
+    edge_list,
+    pose_collides,
+    pose_conflict,
+    segment_hits_edges,
+    segment_hits_polygon,
+    touch_tolerance,
+)
+from segplan.links import LONGD_RTOL, LinkModel
 from segplan.pose import Pose, alpha_interval, intrinsic
-from segplan.world import segment_hits_polygon
+from segplan.validity import Workspace
 
 
 def _random_cases(n, seed, wide=1.5):
@@ -83,32 +86,66 @@ def test_intrinsic_fast_path_equals_array_path():
         intrinsic((1.0, 2.0), (3.0, 2.0, 1.0))
 
 
-def test_scalar_segment_test_equals_world_segment_test():
+def test_scalar_segment_test_equals_the_array_test_and_pose_collides():
+    """geometry.segment_hits_edges (scalar) makes the decisions of the array path, with tolerance."""
     rng = np.random.default_rng(3)
     world = random_world(5, 10)
-    hits = 0
+    hits = near = 0
     for poly in world.enlarged:
-        v = collision.ConvexPolygon(poly, check=False).vertices
-        edges = _edge_list([(float(x), float(y)) for x, y in v])
+        c_poly = ConvexPolygon(poly, check=False)
+        v = c_poly.vertices
+        edges = edge_list(c_poly)
         c, r = v.mean(axis=0), 2.0 * float(np.abs(v - v.mean(axis=0)).max())
         for j in range(300):
             a = c + rng.uniform(-r, r, 2)
             if j % 3 == 0:  # start on a vertex or an edge: touching cases
                 k = int(rng.integers(len(v)))
                 a = v[k] + (float(rng.random()) if j % 2 else 0.0) * (v[(k + 1) % len(v)] - v[k])
+            if j % 7 == 0:  # just off a vertex, within or beyond the tolerance
+                k = int(rng.integers(len(v)))
+                a = v[k] + c_poly.normals[k] * float(rng.choice([1e-12, 1e-9, 1e-8, 1e-6]))
             th = float(rng.uniform(-math.pi, math.pi))
             A = (float(a[0]), float(a[1]))
-            B = (A[0] + 1.2 * math.cos(th), A[1] + 1.2 * math.sin(th))
-            expected = segment_hits_polygon(A, B, v)
-            assert _segment_hits(A, B, edges) == expected
+            dx, dy = 1.2 * math.cos(th), 1.2 * math.sin(th)
+            tol = touch_tolerance(A[0], A[1], 1.2, c_poly.centre, c_poly.radius)
+            expected = segment_hits_polygon(A, (A[0] + dx, A[1] + dy), c_poly, tol)
+            assert segment_hits_edges(A[0], A[1], dx, dy, edges, tol) == expected
+            assert pose_collides((A[0], A[1], th), 1.2, c_poly) == expected
+            exact = segment_hits_polygon(A, (A[0] + dx, A[1] + dy), v)
+            assert expected or not exact  # the tolerance only adds touching cases
+            near += expected != exact
             hits += expected
     assert hits > 100
+
+
+def test_workspace_pose_free_is_the_one_pose_predicate():
+    """Workspace.pose_free (scalar) agrees with geometry.pose_conflict, also at near-touches."""
+    world = random_world(11, 10)
+    ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+    rng = np.random.default_rng(8)
+    x0, y0, x1, y1 = world.free_bounds
+    L = world.robot.L
+    free = 0
+    for j in range(3000):
+        p = Pose(
+            float(rng.uniform(x0 - 1, x1 + 1)), float(rng.uniform(y0 - 1, y1 + 1)), float(rng.uniform(-3, 3))
+        )
+        if j % 4 == 0:  # B just at a wall, or A just at an enlarged vertex
+            poly = world.enlarged[int(rng.integers(len(world.enlarged)))]
+            vx, vy = poly[int(rng.integers(len(poly)))]
+            eps = float(rng.choice([-1e-9, 0.0, 1e-9, 1e-6]))
+            p = Pose(float(vx) + eps, float(vy), p.theta) if j % 8 else Pose(x1 - L + eps, p.y, 0.0)
+        expected = pose_conflict(p, L, world.enlarged, world.free_bounds) is None
+        assert ws.pose_free(p) == expected
+        assert world.is_free(p) == expected
+        free += expected
+    assert 300 < free < 2700
 
 
 def test_scalar_longd_equals_cost_module_bit_for_bit():
     for d, p0, p1, alpha, L in _random_cases(300, 4):
         for rtol in (LONGD_RTOL, 1e-8):
-            assert _longd_scalar(d, p0, p1, alpha, L, rtol) == float(
+            assert longd_intrinsic_scalar(d, p0, p1, alpha, L, rtol) == float(
                 cost.longd_intrinsic(d, p0, p1, alpha, L, rtol=rtol)
             )
 
@@ -116,17 +153,19 @@ def test_scalar_longd_equals_cost_module_bit_for_bit():
 def test_workspace_caches_give_the_uncached_answers():
     world = random_world(7, 10)
     ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
-    ex = Expander(ws)
+    links = LinkModel(ws)
     rng = np.random.default_rng(5)
     n_polygons = len(ws.polygons)
     checked = 0
     for _ in range(60):
         p0 = Pose(float(rng.uniform(1, 29)), float(rng.uniform(1, 19)), float(rng.uniform(-3, 3)))
-        u = ex.union(p0, world.goal)
+        u = links.union(p0, world.goal)
         if u is None:
             continue
         checked += 1
-        fresh = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+        fresh = Workspace(
+            world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature, cache=False
+        )
         only = [int(i) for i in rng.permutation(n_polygons)[: int(rng.integers(1, n_polygons + 1))]]
         # the same questions twice (the second time from the cache) and in another order
         for _ in range(2):
@@ -138,18 +177,18 @@ def test_workspace_caches_give_the_uncached_answers():
             truth = [i for i in range(n_polygons) if collision.collides(u, ws.convex[i], check=False)]
             assert ws.colliding(u, first=False) == sorted(truth, key=lambda i: ws.facts(u).near[i])
             expected = cost.longd_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, LONGD_RTOL)
-            assert ex.link_cost(u) == float(expected)
+            assert links.link_cost(u) == float(expected)
     assert checked > 20
 
 
 def test_small_heuristic_batches_use_the_scalar_path():
     world = random_world(3, 10)
     ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
-    ex = Expander(ws)
+    links = LinkModel(ws)
     pairs = [(Pose(2.0 + i, 3.0, 0.1 * i), world.goal) for i in range(4)]
-    ex.prefetch(pairs)
-    assert ex.stats.batched == 0  # left to union(), pair by pair
+    links.prefetch(pairs)
+    assert ws.stats.batched == 0  # left to union(), pair by pair
     for p0, p1 in pairs:
-        u = ex.union(p0, p1)
+        u = links.union(p0, p1)
         geo = intrinsic(p0, p1)
         assert u.alpha == pytest.approx(heuristic_alpha(geo.d, geo.phi0, geo.phi1, ws.L), abs=1e-12)

@@ -63,6 +63,28 @@ def test_plan_obstacles_bounds():
     assert x0 <= -1 and x1 >= 10
 
 
+def test_floor_draws_walls_obstacles_and_poses():
+    robot = segplan.Robot(1.0, half_width=0.3)
+    obstacles = [[(4, 1), (6, 1), (5, 3)], [(2, 4), (3, 4), (3, 5), (2, 5)]]
+    sc = segplan.make_scenario(robot, (0.5, 0.5, 0.0), (8.0, 5.0, 0.5), obstacles, (-1, -1, 10, 7))
+    ax = plot.plot_floor(sc)
+    # the walls, two enlarged obstacles, two obstacles
+    assert len(ax.patches) == 5
+    labels = [p.get_label() for p in ax.patches]
+    assert labels.count("enlarged obstacle") == 1 and labels.count("obstacle") == 1
+    enlarged = [p for p in ax.patches if p.get_label() == "enlarged obstacle"][0]
+    assert np.allclose(enlarged.get_xy()[:-1], sc.enlarged[0])
+    # start and goal: the segment A->B of each
+    segments = [line for line in ax.lines if len(line.get_xdata()) == 2]
+    ends = {(round(line.get_xdata()[0], 9), round(line.get_ydata()[0], 9)) for line in segments}
+    assert ends == {(0.5, 0.5), (8.0, 5.0)}
+    assert ax.get_xlabel() == "x [m]" and ax.get_aspect() == 1.0
+    ax2 = plot.plot_floor(sc, bounds=False, poses=False)
+    assert len(ax2.patches) == 4 and not ax2.lines
+    with pytest.raises(ValueError, match="Scenario"):
+        plot.plot_floor("fig5.json")
+
+
 def test_longd_curve_is_formula_1():
     alphas = np.radians(np.linspace(-30.0, 60.0, 7))
     ax = plot.plot_longd(P0, P1, 1.0, alphas=alphas, mark_min=False, chord=False)

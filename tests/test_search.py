@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 import segplan
 from segplan import NoPathError, Plan, Pose, Robot, make_scenario, plan, plan_scenario, random_world
 from segplan.cost import longd_exact
-from segplan.search import characteristic_dimension, polygon_gap
+from segplan.problem import characteristic_dimension, polygon_gap
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 SQUARE = [[4.0, -1.0], [6.0, -1.0], [6.0, 1.0], [4.0, 1.0]]
@@ -206,3 +206,21 @@ def test_heuristic_c_limits():
     assert plan_scenario(sc, "c", ds=1e12).nodes == plan_scenario(sc, "b").nodes
     with pytest.raises(ValueError, match="ds"):
         plan_scenario(sc, "c", ds=-1.0)
+
+
+def test_link_observer_records_without_changing_the_plan():
+    """api.plan_scenario_observed: a study sees every link cost of a search; the plan is unchanged."""
+    from segplan.api import plan_scenario_observed
+
+    sc = segplan.load_scenario(Path(__file__).resolve().parents[1] / "scenarios" / "fig5_example1.json")
+    seen = []
+    observed = plan_scenario_observed(sc, lambda u, c: seen.append((u, c)), heuristic="a")
+    plain = plan_scenario(sc, heuristic="a")
+    assert observed.nodes == plain.nodes and observed.cost == plain.cost
+    assert len(seen) > len(observed.unions)
+    ids = {id(u) for u, _ in seen}
+    assert all(id(u) in ids for u in observed.unions)  # every link of the plan was costed
+    for u, c in seen[:50]:
+        assert c == pytest.approx(longd_exact(u.p0, u.p1, u.alpha, u.L), rel=0.03)
+    with pytest.raises(ValueError, match="observer"):
+        plan_scenario_observed(sc, "not callable")

@@ -20,6 +20,7 @@ from scipy.sparse.csgraph import csgraph_from_dense, floyd_warshall
 
 import segplan
 from segplan import Robot, Union, make_scenario, plan_scenario, random_world
+from segplan.floors import random_convex_polygon
 from segplan.pose import feasible_alpha_interval, intrinsic
 from segplan.studies.searches import (
     plan_rear_length,
@@ -28,7 +29,6 @@ from segplan.studies.searches import (
     run_searches,
     shortest_point_path,
 )
-from segplan.world import random_convex_polygon
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 

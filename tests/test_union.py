@@ -140,10 +140,10 @@ def test_wrap_of_pi_is_pi():
 
 
 def test_wrap_convention_is_half_open_at_minus_pi():
-    from segplan.pose import _wrap_scalar
+    from segplan.pose import wrap_scalar
 
     for a, expected in ((-math.pi, math.pi), (math.pi, math.pi), (3 * math.pi, math.pi), (0.5, 0.5)):
         assert wrap(a) == pytest.approx(expected, abs=1e-12)
-        assert _wrap_scalar(a) == wrap(a)
+        assert wrap_scalar(a) == wrap(a)
     many = wrap(np.linspace(-10.0, 10.0, 2001))
     assert np.all((many > -math.pi) & (many <= math.pi))

@@ -16,18 +16,17 @@ from shapely.geometry import LineString, Point, Polygon
 
 import segplan
 from segplan import Robot, ScenarioError, load_scenario, make_scenario, random_world, save_scenario
-from segplan.world import (
+from segplan.floors import random_convex_polygon
+from segplan.geometry import (
     DEFAULT_MAX_ARC,
     check_convex_polygon,
     enlarge_polygon,
     enlargement_excess,
-    loads_scenario,
     polygons_overlap,
     pose_segment,
-    random_convex_polygon,
-    scenario_from_dict,
     segment_hits_polygon,
 )
+from segplan.world import loads_scenario, scenario_from_dict
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 SQUARE = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]

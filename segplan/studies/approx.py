@@ -445,7 +445,8 @@ def planner_links(scenarios, **options):
     """Every LONGD evaluation the planner makes while solving ``scenarios``, recorded.
 
     Each scenario is planned with :func:`segplan.plan_scenario` (``options`` passed on);
-    meanwhile every call of the planner's link cost (``Expander.link_cost``, which uses
+    meanwhile every call of the planner's link cost (:class:`segplan.links.LinkModel`, seen through
+    :func:`segplan.api.plan_scenario_observed`; which uses
     [2] inside the domain and [1] outside: :func:`segplan.cost.longd`) is recorded, for
     links (``g``) and heuristic estimates (``h'`` (a)) alike. The unions are the ones the
     search builds: in their optimal reference system
@@ -465,28 +466,20 @@ def planner_links(scenarios, **options):
         without a plan (:class:`segplan.NoPathError`) contribute their evaluations with
         ``in_plan`` False.
     """
-    from unittest import mock
-
     import pandas as pd
 
-    from ..expansion import Expander
-    from ..search import NoPathError, plan_scenario
+    from ..api import plan_scenario_observed
+    from ..path import NoPathError
 
     record = []
-    original = Expander.link_cost
-
-    def link_cost(self, u):
-        record.append(u)
-        return original(self, u)
-
     rows = []
     for name, scenario in scenarios.items():
         record.clear()
-        with mock.patch.object(Expander, "link_cost", link_cost):
-            try:
-                unions = {id(u) for u in plan_scenario(scenario, **options).unions}
-            except NoPathError:
-                unions = set()
+        try:
+            plan = plan_scenario_observed(scenario, lambda u, _cost: record.append(u), **options)
+            unions = {id(u) for u in plan.unions}
+        except NoPathError:
+            unions = set()
         rows += [(name, u.d / u.L, u.phi0, u.phi1, u.alpha, id(u) in unions) for u in record]
     cols = ["scenario", "d_over_L", "phi0", "phi1", "alpha", "in_plan"]
     df = pd.DataFrame(rows, columns=cols)

@@ -17,7 +17,7 @@ search. This module adds what those comparisons need and the planner does not co
   polygons; likewise for A and the rear length. That shortest path is found exactly on
   the visibility graph of the polygon vertices (Lozano-Perez and Wesley, 1979).
 
-Nothing here plans: the search is :func:`segplan.search.plan_scenario`.
+Nothing here plans: the search is :func:`segplan.api.plan_scenario`.
 """
 
 from __future__ import annotations
@@ -28,10 +28,12 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ..api import plan_scenario
+from ..geometry import pose_segment
+from ..path import NoPathError, Plan
 from ..romberg import romberg
-from ..search import NoPathError, Plan, plan_scenario
 from ..union import Union
-from ..world import Scenario, pose_segment
+from ..world import Scenario
 
 __all__ = [
     "plan_rear_length",

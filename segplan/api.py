@@ -1,0 +1,277 @@
+"""Planning, the library's entry points: :func:`plan` and :func:`plan_scenario`.
+
+Puts the parts together, as section "Results. Graph-search" of Campoy et al. (1989)
+does: the validity checker of the enlarged floor (:class:`segplan.validity.Workspace`),
+the link model (:class:`segplan.links.LinkModel`: unions in the optimal reference system
+and their LONGD), the paper's graph expansion (:class:`segplan.expansion.Expander`), the
+problem with its objective (:class:`segplan.problem.Problem`: ``g`` and ``h'`` a/b/c)
+and the A* search (:func:`segplan.search.astar`); optionally the refinement beyond the
+paper (:func:`segplan.refine`).
+
+The returned ``Plan.cost`` is always the exact LONGD [1] of the plan found (Romberg),
+so the paper's two searches (``cost="longd"`` and the baseline ``cost="distance"``)
+compare fairly. The time of off-line work (``d_s``, the fitted coefficients of the
+heuristic frame and of formula [2], once per process) is not counted in
+``Plan.seconds``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import weakref
+
+from .cost import checked_intrinsic, longd_exact_intrinsic
+from .expansion import Expander
+from .frame import heuristic_coefficients
+from .links import LinkModel
+from .path import Plan
+from .problem import COSTS, HEURISTICS, Problem, characteristic_dimension
+from .refine import refine_with
+from .search import astar
+from .validity import Workspace
+from .world import Robot, Scenario, make_scenario
+
+__all__ = ["plan", "plan_scenario", "plan_scenario_observed"]
+
+
+_DS_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _scenario_ds(scenario: Scenario) -> float:
+    """:func:`characteristic_dimension` of a scenario, computed once (the paper's off-line step)."""
+    ds = _DS_CACHE.get(scenario)
+    if ds is None:
+        ds = characteristic_dimension(scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L)
+        _DS_CACHE[scenario] = ds
+    return ds
+
+
+# -- planning --------------------------------------------------------------------------
+def plan(
+    start,
+    goal,
+    obstacles,
+    L: float,
+    bounds=None,
+    half_width: float = 0.0,
+    max_steer: float = math.radians(45.0),
+    heuristic: str = "a",
+    **options,
+) -> Plan:
+    """Plan a forward-only path of the segment robot from ``start`` to ``goal``.
+
+    Parameters
+    ----------
+    start, goal : (x, y, theta)
+        Poses: rear-axle point A and heading (radians).
+    obstacles : sequence of (k, 2) arrays
+        Convex polygons (either orientation); enlarged by ``half_width`` off-line.
+    L : float
+        Robot length A->B (> 0).
+    bounds : (xmin, ymin, xmax, ymax), optional
+        Walls; the whole swept segment stays strictly inside them shrunk by ``half_width``.
+    half_width : float
+        Half-width of the robot (>= 0).
+    max_steer : float
+        Steering limit (radians, in ``(0, pi/2)``): rear-path curvature at most
+        ``tan(max_steer) / L`` on every union.
+    heuristic : {"a", "b", "c"}
+        The paper's ``h'`` (see the module docstring).
+    **options
+        Passed to :func:`plan_scenario` (``cost``, ``version``, ``ds``, ``alpha_method``,
+        ``max_expansions``, ``time_limit``, ``expander``).
+
+    Returns
+    -------
+    Plan
+
+    Raises
+    ------
+    ValueError
+        Bad input, naming the argument (``segplan.ScenarioError``, a ValueError, for a
+        malformed polygon or a start/goal in collision or out of bounds).
+    NoPathError
+        No plan within the search limits; carries what was explored.
+    """
+    robot = Robot(L, half_width, max_steer)
+    scenario = make_scenario(robot, start, goal, obstacles, bounds, source="plan()")
+    return plan_scenario(scenario, heuristic=heuristic, **options)
+
+
+def _check_choice(value, choices, name):
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {', '.join(map(repr, choices))}, got {value!r}")
+    return value
+
+
+def plan_scenario(
+    scenario: Scenario,
+    heuristic: str = "a",
+    *,
+    cost: str = "longd",
+    version: str = "b",
+    ds: float | None = None,
+    alpha_method: str = "heuristic",
+    max_expansions: int = 3000,
+    time_limit: float = 10.0,
+    max_turn_chain: int = 4,
+    expander: dict | None = None,
+    refine: bool | dict = False,
+) -> Plan:
+    """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        From :func:`segplan.load_scenario`, :func:`segplan.make_scenario` or
+        :func:`segplan.random_world`.
+    heuristic : {"a", "b", "c"}
+        ``h'``: (a) LONGD of the direct union, (b) distance, (c) their weighted average.
+    cost : {"longd", "distance"}
+        Link cost: LONGD (the method) or the distance between node points (the paper's
+        baseline).
+    version : {"b", "a"}
+        Reference systems of intermediate nodes (Fig. 4), see
+        :class:`segplan.expansion.Expander`.
+    ds : float, optional
+        Characteristic dimension of the surroundings for heuristic (c); default
+        :func:`segplan.problem.characteristic_dimension` of the enlarged obstacles.
+    alpha_method : {"heuristic", "exact"}
+        Optimal reference system method (section "Optimal reference system").
+    max_expansions : int
+        Expansions before giving up (NoPathError, ``reason="expansions"``).
+    time_limit : float
+        Seconds before giving up (NoPathError, ``reason="time"``).
+    max_turn_chain : int
+        Longest chain of consecutive turn states (difficult cases): four quarter turns
+        make a full circle. Bounds the part of the graph built from turn states.
+    expander : dict, optional
+        Further keyword arguments of :class:`segplan.expansion.Expander`
+        (``max_iterations``, ``r0``, ...).
+    refine : bool or dict
+        Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
+        splits, local moves of the nodes), with default options (True) or these
+        keyword arguments (a dict). ``Plan.seconds`` then counts search and refinement.
+
+    Returns
+    -------
+    Plan
+    """
+    return _plan(
+        scenario,
+        heuristic,
+        cost=cost,
+        version=version,
+        ds=ds,
+        alpha_method=alpha_method,
+        max_expansions=max_expansions,
+        time_limit=time_limit,
+        max_turn_chain=max_turn_chain,
+        expander=expander,
+        refine=refine,
+    )
+
+
+def plan_scenario_observed(scenario: Scenario, observer, heuristic: str = "a", **options) -> Plan:
+    """:func:`plan_scenario` with an observer of the link costs (for studies).
+
+    ``observer(union, cost)`` is called on every link cost the search asks for (``g`` of
+    its links and ``h'`` (a) alike; see :class:`segplan.links.LinkModel`). The plan is the
+    same as :func:`plan_scenario`'s: the observer only watches.
+    """
+    if not callable(observer):
+        raise ValueError(f"observer must be callable, got {observer!r}")
+    return _plan(scenario, heuristic, observer=observer, **options)
+
+
+def _plan(
+    scenario,
+    heuristic,
+    *,
+    cost="longd",
+    version="b",
+    ds=None,
+    alpha_method="heuristic",
+    max_expansions=3000,
+    time_limit=10.0,
+    max_turn_chain=4,
+    expander=None,
+    refine=False,
+    observer=None,
+) -> Plan:
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    _check_choice(heuristic, HEURISTICS, "heuristic")
+    _check_choice(cost, COSTS, "cost")
+    if not (isinstance(refine, bool) or isinstance(refine, dict)):
+        raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
+    if isinstance(max_expansions, bool) or int(max_expansions) != max_expansions or max_expansions < 1:
+        raise ValueError(f"max_expansions must be an integer >= 1, got {max_expansions!r}")
+    if isinstance(max_turn_chain, bool) or int(max_turn_chain) != max_turn_chain or max_turn_chain < 0:
+        raise ValueError(f"max_turn_chain must be an integer >= 0, got {max_turn_chain!r}")
+    if not (isinstance(time_limit, int | float) and math.isfinite(time_limit) and time_limit > 0):
+        raise ValueError(f"time_limit must be a positive number of seconds, got {time_limit!r}")
+    robot = scenario.robot
+    L = robot.L
+    # off-line work, outside the planning time (the paper: "the processing of the model of
+    # the surroundings ... is performed off-line"): d_s, and the fitted coefficients of the
+    # heuristic reference system and of formula [2] (each computed once per process)
+    if heuristic == "c":
+        if ds is None:
+            ds = _scenario_ds(scenario)
+        if not (isinstance(ds, int | float) and math.isfinite(ds) and ds >= 0):
+            raise ValueError(f"ds must be a finite number >= 0, got {ds!r}")
+        ds_over_L = float(ds) / L
+    else:
+        ds_over_L = 0.0
+    if alpha_method == "heuristic":
+        heuristic_coefficients()
+    t0 = time.perf_counter()
+    ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
+    options = dict(expander or {})
+    links = LinkModel(ws, alpha_method, options.get("steer_fallback", True), observer)
+    ex = Expander(ws, version=version, alpha_method=alpha_method, links=links, **options)
+    problem = Problem(
+        scenario.start, scenario.goal, links, heuristic, cost, ds_over_L, robot.min_turning_radius
+    )
+    goal = problem.goal
+
+    def successors(pose, turns):
+        return ex.successors(pose, goal, turns=turns)
+
+    def finish(nodes, unions, kinds, search_cost, expanded, generated):
+        # LONGD [1] of each union (Romberg, rtol 1e-8)
+        exact = 0.0
+        for u in unions:
+            exact += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=1e-8))
+        st = ex.stats
+        return Plan(
+            nodes=nodes,
+            unions=unions,
+            cost=exact,
+            search_cost=search_cost,
+            expanded=expanded,
+            generated=generated,
+            seconds=time.perf_counter() - t0,
+            heuristic=heuristic,
+            cost_kind=cost,
+            version=ex.version,
+            collision_checks=st.collision_checks,
+            exact_checks=st.exact_checks,
+            iterations=tuple(it for it, ok, _ in st.iterations if ok),
+            kinds=kinds,
+        )
+
+    found = astar(
+        problem,
+        successors,
+        finish,
+        max_expansions=int(max_expansions),
+        time_limit=float(time_limit),
+        t0=t0,
+        max_turn_chain=max_turn_chain,
+    )
+    if refine is False:
+        return found
+    return refine_with(found, links, **({} if refine is True else refine))

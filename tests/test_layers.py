@@ -1,0 +1,79 @@
+"""The layers of the package (issue 11): every import points down, imports inside functions too.
+
+Runs import-linter's ``layers`` contract of ``pyproject.toml`` (``[tool.importlinter]``) on
+the package, so an import cycle or an upward dependency fails the test suite. A second
+test checks that the contract is not vacuous: an upward import (a numerical module importing
+the planner) is reported as broken.
+"""
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def lint_imports(config: Path, cwd: Path) -> subprocess.CompletedProcess:
+    code = (
+        "import sys; from importlinter.cli import lint_imports; "
+        f"sys.exit(lint_imports(config_filename={str(config)!r}, no_cache=True, no_logo=True))"
+    )
+    env = dict(os.environ, PYTHONPATH=str(cwd))
+    return subprocess.run([sys.executable, "-c", code], cwd=cwd, env=env, capture_output=True, text=True)
+
+
+def test_layers_contract_is_kept():
+    out = lint_imports(ROOT / "pyproject.toml", ROOT)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "1 kept, 0 broken" in out.stdout
+
+
+def test_layers_contract_catches_an_upward_import(tmp_path):
+    """A copy of the package where geometry imports the planner (inside a function) breaks the contract."""
+    pkg = tmp_path / "segplan"
+    pkg.mkdir()
+    for src in (ROOT / "segplan").rglob("*.py"):
+        dst = pkg / src.relative_to(ROOT / "segplan")
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        dst.write_text(src.read_text(encoding="utf-8"), encoding="utf-8")
+    geometry = pkg / "geometry.py"
+    geometry.write_text(
+        geometry.read_text(encoding="utf-8")
+        + textwrap.dedent(
+            """
+
+            def _upward():
+                from .api import plan  # an upward import, inside a function
+
+                return plan
+            """
+        ),
+        encoding="utf-8",
+    )
+    config = tmp_path / "pyproject.toml"
+    config.write_text((ROOT / "pyproject.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    out = lint_imports(config, tmp_path)
+    assert out.returncode != 0
+    assert "BROKEN" in out.stdout and "segplan.geometry -> segplan.api" in out.stdout, out.stdout
+
+
+def test_every_module_declares_its_exports():
+    """Each module has an ``__all__`` of names it defines (or imports for re-export in ``__init__``)."""
+    import importlib
+    import pkgutil
+
+    import segplan
+
+    names = [m.name for m in pkgutil.walk_packages(segplan.__path__, "segplan.")]
+    assert len(names) > 20
+    for name in names:
+        if name.endswith("__main__"):
+            continue
+        module = importlib.import_module(name)
+        exported = getattr(module, "__all__", None)
+        assert isinstance(exported, list | tuple), f"{name} declares no __all__"
+        for item in exported:
+            assert hasattr(module, item), f"{name}.__all__ names {item!r}, which it does not define"
+            assert not item.startswith("_"), f"{name}.__all__ exports the private {item!r}"
