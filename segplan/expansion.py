@@ -89,7 +89,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .links import LinkModel
-from .pose import Pose, wrap_scalar
+from .pose import Pose, wrap_fmod
 from .union import Union
 from .validity import ExpansionStats, Workspace
 
@@ -145,7 +145,7 @@ def _iterate_pose(start, goal, px: float, py: float, base: float, w: float) -> P
         theta_s = clamped_spline_tangent(start, (px, py), goal)
     except ValueError:
         theta_s = base
-    return Pose(px, py, wrap_scalar(base + w * wrap_scalar(theta_s - base)))
+    return Pose(px, py, wrap_fmod(base + w * wrap_fmod(theta_s - base)))
 
 
 def outward_bisectors(polygon: np.ndarray) -> np.ndarray:
@@ -516,7 +516,7 @@ class Expander:
                 # centre at the side, point after turning by beta
                 cx, cy = x - side * R * math.sin(th), y + side * R * math.cos(th)
                 t = th + side * beta
-                out.append(Pose(cx + side * R * math.sin(t), cy - side * R * math.cos(t), wrap_scalar(t)))
+                out.append(Pose(cx + side * R * math.sin(t), cy - side * R * math.cos(t), wrap_fmod(t)))
         return out
 
     def approach_states(self, goal: Pose) -> list[tuple[Pose, Union]]:
@@ -530,8 +530,8 @@ class Expander:
         """
         if self._approach is not None and self._approach[0] == goal:
             return self._approach[1]
-        back = Pose(goal.x, goal.y, wrap_scalar(goal.theta + math.pi))
-        poses = [Pose(p.x, p.y, wrap_scalar(p.theta + math.pi)) for p in self.turn_states(back)]
+        back = Pose(goal.x, goal.y, wrap_fmod(goal.theta + math.pi))
+        poses = [Pose(p.x, p.y, wrap_fmod(p.theta + math.pi)) for p in self.turn_states(back)]
         c, s = math.cos(goal.theta), math.sin(goal.theta)
         poses.append(Pose(goal.x - 2.0 * self.ws.L * c, goal.y - 2.0 * self.ws.L * s, goal.theta))
         out = []

@@ -26,7 +26,7 @@ import numpy as np
 
 from .cost import longd_intrinsic_scalar
 from .frame import heuristic_alpha, optimal_alpha_intrinsic
-from .pose import Pose, wrap_scalar
+from .pose import Pose, wrap_fmod
 from .romberg import RombergError
 from .union import Union, cubic_coefficients
 from .validity import Workspace
@@ -65,7 +65,7 @@ def _geometry(p0, p1):
     if d <= 1e-9 * max(1.0, abs(p0[0]), abs(p0[1]), abs(p1[0]), abs(p1[1])):
         return None
     psi = math.atan2(dy, dx)
-    phi0, phi1 = wrap_scalar(p0[2] - psi), wrap_scalar(p1[2] - psi)
+    phi0, phi1 = wrap_fmod(p0[2] - psi), wrap_fmod(p1[2] - psi)
     lo = -HALF_PI - min(phi0, phi1, 0.0) + ALPHA_MARGIN
     hi = HALF_PI - max(phi0, phi1, 0.0) - ALPHA_MARGIN
     if not hi > lo:
@@ -189,7 +189,7 @@ class LinkModel:
                     self.ws.stats.infeasible += 1
                     return None
         else:
-            alpha = wrap_scalar(psi - frame_angle)
+            alpha = wrap_fmod(psi - frame_angle)
         if not lo < alpha < hi:
             self.ws.stats.infeasible += 1
             return None

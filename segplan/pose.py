@@ -26,6 +26,7 @@ import numpy as np
 HALF_PI = 0.5 * math.pi
 
 __all__ = [
+    "wrap_fmod",
     "wrap_scalar",
     "HALF_PI",
     "Intrinsic",
@@ -74,7 +75,8 @@ def wrap(angle):
     Every angle difference in segplan (intrinsic headings, heading changes) is wrapped
     here, to the half-open interval ``(-pi, pi]``: ``-pi`` maps to ``+pi``, so a reversal
     (a goal heading opposite to the chord) reads ``+pi``. The scalar fast path
-    :func:`wrap_scalar` performs the same operations.
+    :func:`wrap_scalar` performs the same operations; :func:`wrap_fmod` is the planner's
+    scalar form (equal but for the last bit).
     """
     a = np.asarray(angle, dtype=float)
     a = a - (2.0 * math.pi) * np.round(a / (2.0 * math.pi))  # in [-pi, pi] up to rounding
@@ -171,6 +173,21 @@ def wrap_scalar(a: float) -> float:
     if a <= -math.pi:
         return a + 2.0 * math.pi
     return a - 2.0 * math.pi if a > math.pi else a
+
+
+def wrap_fmod(a: float) -> float:
+    """:func:`wrap` of one float computed with ``math.fmod``: the planner's scalar wrap.
+
+    The same convention, ``(-pi, pi]``, and the same value as :func:`wrap_scalar` except,
+    for some angles, in the last bit (``fmod`` is exact; the ``round`` form rounds once
+    more). The planner's link model and node generation use this form: the paper's search
+    is sensitive to the last bit of a heading (a tie between two successors), and its
+    published numbers in the book were computed with it, so it stays.
+    """
+    a = math.fmod(a + math.pi, 2.0 * math.pi)
+    if a <= 0.0:
+        a += 2.0 * math.pi
+    return a - math.pi
 
 
 def _intrinsic_scalar(p0, p1) -> Intrinsic | None:

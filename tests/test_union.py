@@ -140,10 +140,14 @@ def test_wrap_of_pi_is_pi():
 
 
 def test_wrap_convention_is_half_open_at_minus_pi():
-    from segplan.pose import wrap_scalar
+    from segplan.pose import wrap_fmod, wrap_scalar
 
     for a, expected in ((-math.pi, math.pi), (math.pi, math.pi), (3 * math.pi, math.pi), (0.5, 0.5)):
         assert wrap(a) == pytest.approx(expected, abs=1e-12)
         assert wrap_scalar(a) == wrap(a)
+        assert wrap_fmod(a) == pytest.approx(wrap(a), abs=1e-15)
+    for a in np.linspace(-20.0, 20.0, 4001):
+        assert -math.pi < wrap_fmod(float(a)) <= math.pi
+        assert abs(wrap_fmod(float(a)) - wrap(a)) <= 4e-15
     many = wrap(np.linspace(-10.0, 10.0, 2001))
     assert np.all((many > -math.pi) & (many <= math.pi))
