@@ -91,3 +91,10 @@ def test_claims_table_columns_and_numbering():
     with pytest.raises(ValueError, match="misses"):
         claims_table([dict(claim="c")])
     assert isinstance(judge(1, Criterion("n", ">", 0)), Verdict)
+
+
+def test_timing_criterion_hides_the_varying_value_but_judges_it():
+    c = Criterion("heuristic time / one scalar [2]", "<=", 0.1, partly=1.0, fmt="{:.1f}", varies=True)
+    fast, slow = judge(0.05, c), judge(5.3, c)
+    assert (fast.word, slow.word) == ("reproduced", "not reproduced")
+    assert fast.criterion == slow.criterion and "5.3" not in slow.criterion

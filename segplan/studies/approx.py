@@ -37,6 +37,7 @@ __all__ = [
     "exact_split",
     "k_basis_comparison",
     "k_by_alpha",
+    "k_uncapped_limit",
     "planner_links",
     "romberg_work",
     "sample_domain",
@@ -495,3 +496,23 @@ def planner_links(scenarios, **options):
     for col in ("phi0", "phi1", "alpha"):
         df[col] = np.degrees(df[col])
     return df.rename(columns={"phi0": "phi0_deg", "phi1": "phi1_deg", "alpha": "alpha_deg"})
+
+
+def k_uncapped_limit(coef=K_COEF) -> float:
+    """Largest ``|alpha|`` (radians) up to which ``c0 + c1 sin^2(alpha)`` stays in (0, 1) uncapped.
+
+    The stored ``k_alpha`` holds ``sin^2`` at its 45 deg value beyond the calibration grid
+    (:data:`segplan.cost.S2_CAP`); without that cap the fitted form leaves (0, 1) where it
+    crosses 0 (``c1 < 0``) or 1 (``c1 > 0``). Returns ``pi / 2`` when it never does.
+
+    Raises
+    ------
+    ValueError
+        If ``c0`` itself is not in (0, 1).
+    """
+    c0, c1 = (float(v) for v in coef)
+    if not 0.0 < c0 < 1.0:
+        raise ValueError(f"coef[0] must lie in (0, 1), got {c0}")
+    edge = 0.0 if c1 < 0 else 1.0
+    s2 = (edge - c0) / c1 if c1 != 0 else math.inf
+    return math.asin(math.sqrt(s2)) if 0.0 < s2 < 1.0 else 0.5 * math.pi

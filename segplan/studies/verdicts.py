@@ -51,6 +51,10 @@ class Criterion:
         earns "partly reproduced". ``None``: no band, the verdict is yes or no.
     fmt : str
         Format of the value and the bounds in the criterion's text (``"{:.2%}"``, ...).
+    varies : bool
+        The value is a timing that varies from run to run and machine to machine: the
+        criterion's text then does not print it (the chapter prints it in a cell whose
+        output the tests do not compare); the verdict is still computed from it.
 
     Raises
     ------
@@ -64,6 +68,7 @@ class Criterion:
     threshold: float
     partly: float | None = None
     fmt: str = "{:g}"
+    varies: bool = False
 
     def __post_init__(self):
         if self.op not in _OPS:
@@ -138,6 +143,8 @@ def judge(value, criterion: Criterion) -> Verdict:
         shown = criterion.show(value)
     else:
         shown = criterion.show(x)
+    if criterion.varies:
+        shown = "on the build machine (a timing: printed above, varies between runs)"
     text = f"{criterion.text()}; measured {shown}"
     holds = _OPS[criterion.op]
     if math.isnan(x):
