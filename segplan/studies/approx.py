@@ -41,6 +41,7 @@ __all__ = [
     "k_uncapped_limit",
     "planner_links",
     "MATCH_RTOLS",
+    "matched_cost_study",
     "romberg_matched",
     "romberg_work",
     "sample_domain",
@@ -627,3 +628,23 @@ def variant_error_study(name: str, d_over_L, phi0, phi1, alpha, calibration=None
             "in_domain": cal.domain.contains(dl, p0, p1, a, 1.0),
         }
     )
+
+
+def matched_cost_study(n: int = 2000, seed: int = 11):
+    """Chapter 3's cost comparison, shared with ``benchmarks/longd_speed.py`` (the README).
+
+    ``n`` unions drawn inside the domain of [2] (:func:`sample_domain`, ``seed``); the
+    largest error of segplan's [2] on them (:func:`error_study`); Romberg at the loosest
+    tolerance that matches it (:func:`romberg_matched`, reference Romberg to ``1e-12``).
+
+    Returns
+    -------
+    dict
+        ``cases`` (the four arrays), ``reference``, ``approx_max_error`` and the entries of
+        :func:`romberg_matched` (``rtol``, ``mean_evaluations``, ``max_error``, ``tried``, ...).
+    """
+    cases = sample_domain(n, seed=seed)
+    reference = exact_values(*cases, 1.0, rtol=1e-12)
+    approx_max = float(error_study(*cases)["abs_error"].max())
+    out = romberg_matched(*cases, approx_max, reference=reference)
+    return {"cases": cases, "reference": reference, "approx_max_error": approx_max, **out}

@@ -92,13 +92,15 @@ def paper_case_a_excess(d_over_L, phi0, phi1):
     :func:`segplan.frame_exact.exact_alpha_intrinsic`; both costs are LONGD [1] by Romberg.
     Inputs broadcast; headings of opposite signs (case a).
     """
-    dl, p0, p1 = (np.asarray(v, dtype=float) for v in np.broadcast_arrays(d_over_L, phi0, phi1))
+    shape = np.broadcast_shapes(np.shape(d_over_L), np.shape(phi0), np.shape(phi1))
+    dl, p0, p1 = (np.ravel(np.asarray(v, dtype=float)) for v in np.broadcast_arrays(d_over_L, phi0, phi1))
     if np.any(np.sin(p0) * np.sin(p1) >= 0.0):
         raise ValueError("phi0 and phi1 must have opposite signs (case a)")
     _, v_ex, _ = exact_alpha_intrinsic(dl, p0, p1, 1.0, full_output=True)
     a_p = inside(parabola_alpha(p0, p1), p0, p1)
     v_p = longd_unit(1.0 / dl, p0, p1, a_p, rtol=1e-10)
-    return v_p / (v_ex / dl) - 1.0
+    out = (v_p / (v_ex / dl) - 1.0).reshape(shape)
+    return float(out) if out.ndim == 0 else out
 
 
 def case_a_boundary(phi_large, d_over_L, iterations: int = 11, exact_tol: float = 1e-8, lowest=1e-3):
