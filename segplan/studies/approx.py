@@ -15,6 +15,7 @@ They use the stored constants of [2] (:data:`segplan.cost.K_COEF`,
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -37,13 +38,19 @@ __all__ = [
     "exact_split",
     "k_basis_comparison",
     "k_by_alpha",
+    "k_uncapped_limit",
     "planner_links",
+    "MATCH_RTOLS",
+    "matched_cost_study",
+    "romberg_matched",
     "romberg_work",
     "sample_domain",
     "sample_wide",
     "term_study",
     "variant_comparison",
+    "variant_calibration",
     "variant_domains",
+    "variant_error_study",
     "variant_terms",
 ]
 
@@ -488,3 +495,149 @@ def planner_links(scenarios, **options):
     for col in ("phi0", "phi1", "alpha"):
         df[col] = np.degrees(df[col])
     return df.rename(columns={"phi0": "phi0_deg", "phi1": "phi1_deg", "alpha": "alpha_deg"})
+
+
+def k_uncapped_limit(coef=K_COEF) -> float:
+    """Largest ``|alpha|`` (radians) up to which ``c0 + c1 sin^2(alpha)`` stays in (0, 1) uncapped.
+
+    The stored ``k_alpha`` holds ``sin^2`` at its 45 deg value beyond the calibration grid
+    (:data:`segplan.cost.S2_CAP`); without that cap the fitted form leaves (0, 1) where it
+    crosses 0 (``c1 < 0``) or 1 (``c1 > 0``). Returns ``pi / 2`` when it never does.
+
+    Raises
+    ------
+    ValueError
+        If ``c0`` itself is not in (0, 1).
+    """
+    c0, c1 = (float(v) for v in coef)
+    if not 0.0 < c0 < 1.0:
+        raise ValueError(f"coef[0] must lie in (0, 1), got {c0}")
+    edge = 0.0 if c1 < 0 else 1.0
+    s2 = (edge - c0) / c1 if c1 != 0 else math.inf
+    return math.asin(math.sqrt(s2)) if 0.0 < s2 < 1.0 else 0.5 * math.pi
+
+
+#: Tolerances tried by :func:`romberg_matched`, loosest first.
+MATCH_RTOLS = (2.5e-2, 1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5)
+
+
+def romberg_matched(d_over_L, phi0, phi1, alpha, max_error: float, rtols=MATCH_RTOLS, reference=None):
+    """Romberg on [1] at "the same maximum error bound" as [2]: the loosest tolerance that meets it.
+
+    Section "Approximate computation of cost function" compares [2] with "Romberg
+    integration with the same maximum error bound". Romberg's tolerance is an estimate, not
+    a bound, so the matching is measured: for each ``rtol`` in ``rtols`` (loosest first),
+    Romberg from level 1 (:func:`romberg_work`) on the given cases, and the first ``rtol``
+    whose largest relative error against ``reference`` is at most ``max_error`` (the
+    largest error of [2] on the same cases) is kept.
+
+    Parameters
+    ----------
+    d_over_L, phi0, phi1, alpha : array_like
+        Cases (``L = 1``, radians).
+    max_error : float
+        The maximum ``|relative error|`` to match (> 0).
+    rtols : sequence of float
+        Tolerances to try, loosest first.
+    reference : ndarray, optional
+        Exact LONGD of the cases; by default Romberg to ``1e-12``.
+
+    Returns
+    -------
+    dict
+        ``rtol`` (NaN if none of ``rtols`` meets ``max_error``), ``evaluations`` (per case,
+        at that ``rtol``), ``mean_evaluations``, ``max_error`` (Romberg's, at that
+        ``rtol``), and ``tried``: a list of ``(rtol, mean evaluations, max error)``.
+    """
+    if not max_error > 0:
+        raise ValueError(f"max_error must be positive, got {max_error}")
+    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
+    ref = exact_values(dl, p0, p1, a, 1.0, rtol=1e-12) if reference is None else np.asarray(reference)
+    tried = []
+    for rtol in rtols:
+        evals, value = romberg_work(dl, p0, p1, a, rtol=rtol, min_levels=1)
+        err = float(np.max(np.abs(value / ref - 1.0)))
+        tried.append((float(rtol), float(evals.mean()), err))
+        if err <= max_error:
+            return {
+                "rtol": float(rtol),
+                "evaluations": evals,
+                "mean_evaluations": float(evals.mean()),
+                "max_error": err,
+                "tried": tried,
+            }
+    return {
+        "rtol": math.nan,
+        "evaluations": None,
+        "mean_evaluations": math.nan,
+        "max_error": math.nan,
+        "tried": tried,
+    }
+
+
+def variant_calibration(name: str):
+    """A variant of [2] calibrated on its own (:func:`run_calibration` with its terms).
+
+    ``name`` is a key of :func:`segplan.derivation.variants`, e.g. the scan read literally,
+    ``"simpson|cross=1/2|exp=-5/2"``. Returns the :class:`segplan.fit.formula2.Calibration`.
+    """
+    return _variant_calibration(name)
+
+
+@functools.cache
+def _variant_calibration(name):
+    g = calibration_grid()
+    args = (g["d_over_L"], np.radians(g["phi0_deg"]), np.radians(g["phi1_deg"]), np.radians(g["alpha_deg"]))
+    return run_calibration(terms=variant_terms(name, *args))
+
+
+def variant_error_study(name: str, d_over_L, phi0, phi1, alpha, calibration=None):
+    """:func:`error_study` for a variant of [2], with its own ``k(alpha)`` and domain.
+
+    Returns the same columns as :func:`error_study`; ``in_domain`` is the variant's own
+    domain (``calibration.domain``, by default :func:`variant_calibration`).
+    """
+    import pandas as pd
+
+    cal = variant_calibration(name) if calibration is None else calibration
+    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
+    rear, front = variant_terms(name, dl, p0, p1, a)
+    exact = exact_values(dl, p0, p1, a, 1.0)
+    approx = dl * (1.0 + k_from_coef(cal.k_coef, a) * rear) + front
+    m0, m1 = chord_slopes(p0, p1, a)
+    rel = approx / exact - 1.0
+    return pd.DataFrame(
+        {
+            "d_over_L": dl,
+            "alpha_deg": np.degrees(a),
+            "phi0_deg": np.degrees(p0),
+            "phi1_deg": np.degrees(p1),
+            "mbar0": m0,
+            "mbar1": m1,
+            "exact": exact,
+            "approx": approx,
+            "rel_error": rel,
+            "abs_error": np.abs(rel),
+            "in_domain": cal.domain.contains(dl, p0, p1, a, 1.0),
+        }
+    )
+
+
+def matched_cost_study(n: int = 2000, seed: int = 11):
+    """Chapter 3's cost comparison, shared with ``benchmarks/longd_speed.py`` (the README).
+
+    ``n`` unions drawn inside the domain of [2] (:func:`sample_domain`, ``seed``); the
+    largest error of segplan's [2] on them (:func:`error_study`); Romberg at the loosest
+    tolerance that matches it (:func:`romberg_matched`, reference Romberg to ``1e-12``).
+
+    Returns
+    -------
+    dict
+        ``cases`` (the four arrays), ``reference``, ``approx_max_error`` and the entries of
+        :func:`romberg_matched` (``rtol``, ``mean_evaluations``, ``max_error``, ``tried``, ...).
+    """
+    cases = sample_domain(n, seed=seed)
+    reference = exact_values(*cases, 1.0, rtol=1e-12)
+    approx_max = float(error_study(*cases)["abs_error"].max())
+    out = romberg_matched(*cases, approx_max, reference=reference)
+    return {"cases": cases, "reference": reference, "approx_max_error": approx_max, **out}

@@ -13,7 +13,7 @@ from ..frame import HeuristicFit, heuristic_alpha, inside
 from ..frame_exact import exact_alpha_intrinsic, longd_unit, parabola_alpha
 from ..pose import alpha_interval
 
-__all__ = ["heuristic_error_study"]
+__all__ = ["case_a_boundary", "paper_case_a_excess", "heuristic_error_study"]
 
 
 def heuristic_error_study(phi0, phi1, d_over_L, L: float = 1.0, fit: HeuristicFit | None = None):
@@ -82,3 +82,82 @@ def heuristic_error_study(phi0, phi1, d_over_L, L: float = 1.0, fit: HeuristicFi
             "rel_err_paper": (v_p - v_ex) / v_ex,
         }
     )
+
+
+def paper_case_a_excess(d_over_L, phi0, phi1):
+    """Relative LONGD excess of the paper's case-a frame over the exact optimum (``L = 1``).
+
+    Section "Optimal Reference System", case a: ``tan a0 = (1/m0 + 1/m1) / 2``
+    (:func:`segplan.frame_exact.parabola_alpha`, clipped just inside the interval) against
+    :func:`segplan.frame_exact.exact_alpha_intrinsic`; both costs are LONGD [1] by Romberg.
+    Inputs broadcast; headings of opposite signs (case a).
+    """
+    shape = np.broadcast_shapes(np.shape(d_over_L), np.shape(phi0), np.shape(phi1))
+    dl, p0, p1 = (np.ravel(np.asarray(v, dtype=float)) for v in np.broadcast_arrays(d_over_L, phi0, phi1))
+    if np.any(np.sin(p0) * np.sin(p1) >= 0.0):
+        raise ValueError("phi0 and phi1 must have opposite signs (case a)")
+    _, v_ex, _ = exact_alpha_intrinsic(dl, p0, p1, 1.0, full_output=True)
+    a_p = inside(parabola_alpha(p0, p1), p0, p1)
+    v_p = longd_unit(1.0 / dl, p0, p1, a_p, rtol=1e-10)
+    out = (v_p / (v_ex / dl) - 1.0).reshape(shape)
+    return float(out) if out.ndim == 0 else out
+
+
+def case_a_boundary(phi_large, d_over_L, iterations: int = 11, exact_tol: float = 1e-8, lowest=1e-3):
+    """Where the paper's case-a formula stops being exact: a root-find of the boundary.
+
+    For every larger slope ``phi_large`` (radians, > 0) and ``d_over_L``, on both sides
+    (the small slope is ``phi1 = -s`` with ``phi0 = phi_large``, or ``phi0 = -s`` with
+    ``phi1 = phi_large``; the reflection ``(phi0, phi1, alpha) -> -(...)`` covers the
+    other quadrant), the smaller slope ``s`` in ``(lowest, phi_large]`` where the paper's
+    excess (:func:`paper_case_a_excess`) crosses ``exact_tol`` is found by bisection
+    (``iterations`` halvings). Bisection assumes one crossing: the formula fails below the
+    threshold and is exact above it; check it against a grid.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per ``(side, phi_large, d_over_L)``: ``side`` ("phi1 small", "phi0 small"),
+        ``phi_large_deg``, ``d_over_L``, ``threshold_deg`` (an upper bound of the failing
+        smaller slopes, to ``phi_large / 2**iterations``; 0 when the formula is exact
+        down to ``lowest``), ``fails_at_lowest`` and ``excess_at_lowest`` (the excess
+        with the smaller slope at ``lowest``, the limit of the failure).
+    """
+    import pandas as pd
+
+    if iterations < 1:
+        raise ValueError(f"iterations must be >= 1, got {iterations}")
+    big, dl = (np.ravel(v) for v in np.meshgrid(np.ravel(phi_large), np.ravel(d_over_L), indexing="ij"))
+    big, dl = np.asarray(big, dtype=float), np.asarray(dl, dtype=float)
+    if np.any(big <= lowest) or np.any(dl <= 0):
+        raise ValueError("phi_large must exceed lowest and d_over_L must be positive")
+    frames = []
+    for side in ("phi1 small", "phi0 small"):
+
+        def excess(s, side=side):
+            return (
+                paper_case_a_excess(dl, big, -s) if side == "phi1 small" else paper_case_a_excess(dl, -s, big)
+            )
+
+        e_low = excess(np.full(big.shape, lowest))
+        lo, hi = np.full(big.shape, lowest), big.copy()
+        fails_hi = excess(hi) > exact_tol
+        for _ in range(iterations):
+            mid = 0.5 * (lo + hi)
+            f = excess(mid) > exact_tol
+            lo, hi = np.where(f, mid, lo), np.where(f, hi, mid)
+        fails_low = e_low > exact_tol
+        threshold = np.where(fails_low, np.where(fails_hi, big, hi), 0.0)
+        frames.append(
+            pd.DataFrame(
+                {
+                    "side": side,
+                    "phi_large_deg": np.degrees(big),
+                    "d_over_L": dl,
+                    "threshold_deg": np.degrees(threshold),
+                    "fails_at_lowest": fails_low,
+                    "excess_at_lowest": e_low,
+                }
+            )
+        )
+    return pd.concat(frames, ignore_index=True)
