@@ -18,6 +18,7 @@ not.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -146,11 +147,37 @@ def animate_plan(plan, scenario, **kwargs) -> FuncAnimation:
     return animate_path(plan_poses(plan), scenario.robot.L, scenario, **kwargs)
 
 
+#: The player's Font Awesome icons (matplotlib links their stylesheet from a CDN) as plain
+#: characters, so that the page needs no network.
+_ICONS = {
+    "fa fa-minus": "&minus;",
+    "fa fa-fast-backward": "&#x23EE;",
+    "fa fa-step-backward": "&#x23F4;&#x2503;",
+    "fa fa-play fa-flip-horizontal": "&#x25C0;",
+    "fa fa-pause": "&#x23F8;",
+    "fa fa-play": "&#x25B6;",
+    "fa fa-step-forward": "&#x2503;&#x23F5;",
+    "fa fa-fast-forward": "&#x23ED;",
+    "fa fa-plus": "+",
+}
+
+
 def to_html(anim: FuncAnimation) -> str:
-    """The animation as one HTML string that plays offline (PNG frames, JavaScript player)."""
+    """The animation as one HTML string that plays offline (PNG frames, JavaScript player).
+
+    matplotlib's ``to_jshtml`` with its one network resource removed: the stylesheet of
+    the buttons' icons (Font Awesome, from a CDN) is dropped and the icons are written as
+    plain characters.
+    """
     if not isinstance(anim, FuncAnimation):
         raise ValueError(f"anim must be a matplotlib FuncAnimation, got {type(anim).__name__}")
-    return anim.to_jshtml(default_mode="loop")
+    html = anim.to_jshtml(default_mode="loop")
+    html = re.sub(r"<link[^>]*https?://[^>]*>", "", html)
+    for icon, text in _ICONS.items():
+        html = html.replace(f'<i class="{icon}"></i>', text)
+    if re.search(r"(?:src|href)\s*=\s*[\"']?(?:https?:)?//", html):
+        raise RuntimeError("the animation's HTML still loads a resource from the network")
+    return html
 
 
 def save_gif(anim: FuncAnimation, path, fps: int | None = None) -> Path:

@@ -1,4 +1,4 @@
-"""Command line: ``segplan plan SCENARIO [--heuristic a|b|c] [--refine] [--out plan.png] [--animate plan.gif] [--json]``.
+"""Command line: ``segplan plan SCENARIO [--heuristic a|b|c] [--refine] [--out P.png] [--animate P.gif]``.
 
 Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario file or the
 name of a shipped scenario (``segplan plan fig5_example1``).
@@ -88,7 +88,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "scenario",
         metavar="SCENARIO",
-        help="scenario file (JSON, see below) or the name of a shipped scenario: " + ", ".join(shipped_scenarios()),
+        help="scenario file (JSON, see below) or the name of a shipped scenario: "
+        + ", ".join(shipped_scenarios()),
     )
     p.add_argument("--heuristic", choices=("a", "b", "c"), default="a", help="h' of the search (default: a)")
     p.add_argument(
