@@ -32,7 +32,7 @@ from .pose import check_length
 __all__ = ["animate_path", "animate_plan", "save_gif", "to_html"]
 
 #: Default number of frames: enough for smooth motion, few enough for a small page.
-FRAMES = 30
+FRAMES = 24
 
 
 def _frame_indices(poses: np.ndarray, L: float, frames: int) -> np.ndarray:
@@ -51,8 +51,8 @@ def animate_path(
     scenario=None,
     *,
     frames: int = FRAMES,
-    interval: int = 80,
-    figsize: tuple[float, float] = (6.0, 4.2),
+    interval: int = 100,
+    figsize: tuple[float, float] = (5.5, 3.8),
     dpi: int = 50,
     title: str | None = None,
 ) -> FuncAnimation:

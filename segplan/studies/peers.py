@@ -102,7 +102,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from tqdm.auto import tqdm
+from tqdm import tqdm
 
 from ..collision import as_polygon, pose_collides, pose_in_bounds
 from ..metrics import measure_scenario_path, plan_poses, se2_poses
