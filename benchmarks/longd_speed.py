@@ -1,4 +1,4 @@
-"""Speed of LONGD: the closed form [2] against Romberg on [1] (issue 2; not a timed test).
+"""Speed of LONGD: the closed form [2] against Romberg on [1] (not a timed test).
 
 The paper ("Approximate computation of cost function"): formula [2] "involves
 computational cost which is 2/5 to 1/3 of exact computational cost (CPU: System Micro VAX
@@ -18,7 +18,7 @@ validated domain of [2] (where the planner uses it), CPU time, best of ``--repea
   Romberg from level 1 at the loosest tolerance whose maximum error does not exceed
   [2]'s, in integrand evaluations and in time (scalar calls of the intrinsic layer, both).
 
-Targets (issue 2): vectorised ``longd_approx`` >= 1e7 evaluations/s, and >= 100x cheaper
+Targets: vectorised ``longd_approx`` >= 1e7 evaluations/s, and >= 100x cheaper
 per evaluation than ``longd_exact``.
 
 Usage::

@@ -1,7 +1,7 @@
 """Write the README's measured-speed block from the benchmark scripts (never typed by hand).
 
-Runs ``benchmarks/longd_speed.py`` (LONGD, issue 2) and the planner timing of
-``benchmarks/search_speed.py`` (issue 3) on this machine, one core, and replaces the text
+Runs ``benchmarks/longd_speed.py`` (the cost LONGD, formulas [1] and [2]) and the planner
+timing of ``benchmarks/search_speed.py`` on this machine, one core, and replaces the text
 between ``<!-- benchmarks:start -->`` and ``<!-- benchmarks:end -->`` in README.md with the
 results, the date and the machine they were measured on.
 
@@ -44,7 +44,7 @@ def block(runs: int = 9) -> str:
     same = longd["same_max_error"]
     rows = []
     for name in FLOORS:
-        scenario = segplan.load_scenario(ROOT / "scenarios" / f"{name}.json")
+        scenario = segplan.load_scenario(name)
         for h in ("a", "b", "c"):
             rows.append(search_speed.bench(scenario, h, runs))
         refined = search_speed.bench(scenario, "a", runs, refine=True)  # beyond the paper
@@ -56,7 +56,7 @@ def block(runs: int = 9) -> str:
         f"Measured on {when}, {cpu}, {os.cpu_count()} cores, one core used, Python "
         f"{platform.python_version()}, numpy {longd['numpy']}, by `python benchmarks/readme.py`.",
         "",
-        "| LONGD (issue 2) | evaluations/s |",
+        "| cost LONGD | evaluations/s |",
         "| --- | --- |",
         f"| formula [2], `longd_approx` vectorised | {rate[('[2]', 'public', 'vectorised')]:.3g} |",
         f"| formula [2], `longd_approx` scalar calls | {rate[('[2]', 'public', 'scalar')]:.3g} |",
@@ -76,7 +76,7 @@ def block(runs: int = 9) -> str:
         f"({'met' if longd['targets_met']['rate_1e7'] else 'not met'}), >= 100x cheaper than "
         f"`longd_exact` ({'met' if longd['targets_met']['ratio_100x'] else 'not met'}).",
         "",
-        "| planner (issue 3) | h' | found | median CPU ms | expansions | LONGD m |",
+        "| planner, floor | h' | found | median CPU ms | expansions | LONGD m |",
         "| --- | --- | --- | --- | --- | --- |",
     ]
     for r in rows:
@@ -89,8 +89,8 @@ def block(runs: int = 9) -> str:
     lines += [
         "",
         f"Target: a ten-obstacle floor in under 50 ms median (h' a): worst {worst:.1f} ms. "
-        f"`a +refine` is the search followed by `segplan.refine` (beyond the paper; issue 5 "
-        f"asks for under 100 ms): worst {worst_refined:.1f} ms.",
+        f"`a +refine` is the search followed by `segplan.refine` (beyond the paper; target "
+        f"under 100 ms): worst {worst_refined:.1f} ms.",
     ]
     return "\n".join(lines)
 

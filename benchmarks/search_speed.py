@@ -1,4 +1,4 @@
-"""Planning speed per shipped scenario (issue 3; not a timed test).
+"""Planning speed per shipped scenario (not a timed test).
 
 For every scenario in ``scenarios/`` (and a few random worlds of ten obstacles) and every
 heuristic, plan ``--runs`` times and report the median planning time (CPU time of this
@@ -9,7 +9,7 @@ collision checks per second (distinct union-obstacle pairs decided by the boundi
 certain hit or the full test of :func:`segplan.collision.collides`; ``exact/s`` counts
 only the latter).
 
-Target (issue 3): a plan on an industrial floor of about ten obstacles in under 50 ms
+Target: a plan on an industrial floor of about ten obstacles in under 50 ms
 median on one core.
 
 One core: the script sets ``OMP_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` and

@@ -6,13 +6,13 @@ parts, for studies and extensions; they may move between releases. Names with a 
 underscore are private. The modules are layered, every dependency pointing down (the
 README's diagram; enforced by the import-linter contract in ``pyproject.toml``)::
 
-    apps      cli, plot, studies/
+    apps      cli, animate, studies/, fit/ (above plot)
     api       api (plan, plan_scenario), refine
     search    search (A*), expansion (the paper's intermediate nodes)
     problem   problem, links, validity, path, metrics
     world     world, floors, collision, sweep
-    numerics  frame, cost, geometry
-    base      union, romberg, pose, derivation (and the fitted constants)
+    numerics  frame (above frame_exact), cost, geometry
+    base      union, constants (the stored fits), romberg, pose, derivation
 """
 
 from .api import plan, plan_scenario
@@ -26,13 +26,23 @@ from .path import NoPathError, Plan, Refinement
 from .pose import Pose
 from .refine import refine
 from .union import Union
-from .world import Robot, Scenario, ScenarioError, load_scenario, make_scenario, save_scenario
+from .world import (
+    Robot,
+    Scenario,
+    ScenarioError,
+    load_scenario,
+    make_scenario,
+    save_scenario,
+    shipped_scenarios,
+)
+
+__version__ = "0.1.0"
 
 __all__ = ["Pose", "Union", "longd_exact"]
 __all__ += ["CollisionStats", "ConvexPolygon", "collides", "pose_collides", "pose_in_bounds"]
 __all__ += ["union_free", "union_in_bounds"]
 __all__ += ["Robot", "Scenario", "ScenarioError", "load_scenario", "make_scenario"]
-__all__ += ["random_world", "save_scenario"]
+__all__ += ["random_world", "save_scenario", "shipped_scenarios"]
 __all__ += ["NoPathError", "Plan", "plan", "plan_scenario"]
 __all__ += ["longd", "longd_approx"]
 __all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses"]

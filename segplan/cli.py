@@ -1,4 +1,7 @@
-"""Command line: ``segplan plan SCENARIO.json [--heuristic a|b|c] [--refine] [--out plan.png] [--json]``.
+"""Command line: ``segplan plan SCENARIO [--heuristic a|b|c] [--refine] [--out P.png] [--animate P.gif]``.
+
+Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario file or the
+name of a shipped scenario (``segplan plan fig5_example1``).
 
 Plans a forward-only path of the oriented-segment robot (Campoy et al., 1989) on a
 scenario file (see :mod:`segplan.world` for the format), prints its cost (LONGD, the
@@ -15,9 +18,10 @@ import math
 import sys
 from pathlib import Path
 
+from . import __version__
 from .api import plan_scenario
 from .path import NoPathError, Plan
-from .world import ScenarioError, load_scenario
+from .world import ScenarioError, load_scenario, shipped_scenarios
 
 __all__ = ["EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
 
@@ -54,6 +58,8 @@ path (dashed) and the robot at intervals.
 
 exit status: 0 plan found, 1 no path within the limits, 2 bad input.
 examples:
+  segplan plan fig5_example1
+  segplan plan fig5_example1 --refine --animate fig5.gif
   segplan plan scenarios/fig5_example1.json
   segplan plan scenarios/fig5_example1.json --heuristic c --out fig5.png
   segplan plan scenarios/turn_around.json --json
@@ -73,6 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="segplan", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
     )
+    parser.add_argument("--version", action="version", version=f"segplan {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     p = sub.add_parser(
         "plan",
@@ -81,7 +88,12 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=PLAN_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    p.add_argument("scenario", metavar="SCENARIO.json", help="scenario file (JSON, see below)")
+    p.add_argument(
+        "scenario",
+        metavar="SCENARIO",
+        help="scenario file (JSON, see below) or the name of a shipped scenario: "
+        + ", ".join(shipped_scenarios()),
+    )
     p.add_argument("--heuristic", choices=("a", "b", "c"), default="a", help="h' of the search (default: a)")
     p.add_argument(
         "--cost",
@@ -104,6 +116,11 @@ def build_parser() -> argparse.ArgumentParser:
         "of its nodes (segplan.refine)",
     )
     p.add_argument("--out", metavar="PLAN.png", help="draw the plan to this image file")
+    p.add_argument(
+        "--animate",
+        metavar="PLAN.gif",
+        help="write an animation of the robot driving the plan (GIF, rear and front-wheel traces)",
+    )
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument(
         "--max-expansions",
@@ -165,6 +182,15 @@ def _draw(path: str, scenario, unions, title: str) -> None:
     plt.close(fig)
 
 
+def _animate(path: str, scenario, result: Plan, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .animate import animate_plan, save_gif
+
+    save_gif(animate_plan(result, scenario, title=title), path)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``segplan`` command; returns the exit status."""
     parser = build_parser()
@@ -220,6 +246,14 @@ def main(argv: list[str] | None = None) -> int:
             return EXIT_BAD_INPUT
         if not args.json:
             print(f"figure      {args.out}")
+    if args.animate:
+        try:
+            _animate(args.animate, scenario, result, f"{name}: LONGD {result.cost:.2f} m")
+        except OSError as exc:
+            print(f"segplan: error: cannot write {args.animate}: {exc.strerror or exc}", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        if not args.json:
+            print(f"animation   {args.animate}")
     return 0
 
 

@@ -429,7 +429,7 @@ def _approx_scalar(d: float, phi0: float, phi1: float, alpha: float, L: float, k
 def longd_approx(p0, p1, alpha, L):
     """LONGD by the closed approximation [2] (vectorised).
 
-    Section "Approximate computation of cost function". Valid (|relative error| under
+    Section "Approximate computation of cost function". Valid (``|relative error|`` under
     2.5 %) only inside the domain of :func:`in_domain`; use
     :func:`longd` to fall back on formula [1] outside it.
 

@@ -46,6 +46,7 @@ import json
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -459,6 +460,9 @@ def load_scenario(path) -> Scenario:
     Parameters
     ----------
     path : str or Path
+        A scenario file, or the bare name of a shipped scenario (``"fig5_example1"``, see
+        :func:`shipped_scenarios`), read from the installed package with
+        :mod:`importlib.resources`.
 
     Returns
     -------
@@ -472,11 +476,28 @@ def load_scenario(path) -> Scenario:
         where relevant, the key, obstacle index and vertex index.
     """
     p = Path(path)
+    if isinstance(path, str) and not p.suffix and p.name == path and not p.exists():
+        if path not in shipped_scenarios():
+            raise ScenarioError(
+                f"{path!r} is neither a file nor a shipped scenario (one of {', '.join(shipped_scenarios())})"
+            )
+        resource = resources.files("segplan") / "scenarios" / f"{path}.json"
+        return loads_scenario(resource.read_bytes(), source=f"segplan/scenarios/{path}.json")
     try:
         raw = p.read_bytes()
     except OSError as exc:
         raise ScenarioError(f"{p}: cannot read: {exc.strerror or exc}") from None
     return loads_scenario(raw, source=str(p), path=p)
+
+
+def shipped_scenarios() -> tuple[str, ...]:
+    """Names of the scenarios shipped with segplan (package data), sorted.
+
+    ``load_scenario(name)`` reads one of them; in a clone of the repository they are the
+    files of ``scenarios/``, which ``segplan/scenarios`` links to.
+    """
+    folder = resources.files("segplan") / "scenarios"
+    return tuple(sorted(f.name[: -len(".json")] for f in folder.iterdir() if f.name.endswith(".json")))
 
 
 def save_scenario(scenario: Scenario, path) -> Path:

@@ -5,10 +5,10 @@ Checks on ``book/_build/html`` (built by ``.ci/build_book.sh``):
 * every notebook in ``notebooks/`` is a chapter of the book;
 * internal links and resources resolve (files exist, ``#anchors`` exist in their page) and no
   page loads a script, stylesheet, image or frame from another host;
-* in Chromium (Debian's ``chromium``, driven through the DevTools protocol over a pipe, standard
-  library only): no broken image, every math element rendered by the shipped MathJax (an
-  ``mjx-container`` inside, no ``mjx-merror``), no raw TeX delimiters left in the text, no
-  request that leaves ``file://`` and no failed load.
+* in Chromium (Debian's ``chromium``, installed by ``.ci/setup.sh``, driven through the DevTools
+  protocol over a pipe, standard library only): no broken image, every math element rendered
+  by the shipped MathJax (an ``mjx-container`` inside, no ``mjx-merror``), no raw TeX
+  delimiters left in the text, no request that leaves ``file://`` and no failed load.
 
 The pages are skipped when the book has not been built, except under ``CI=true`` where a
 missing build fails. A synthetic broken page checks that the checks catch what they claim to.
@@ -336,7 +336,7 @@ BROWSER_PAGES = [p for p in PAGES if not _parse(p, {}).redirect]
 @pytest.fixture(scope="module")
 def browser():
     executable = chromium_executable()
-    _require(executable is not None, "Debian's chromium is not installed (.ci/build_book.sh installs it)")
+    _require(executable is not None, "Debian's chromium is not installed (.ci/setup.sh installs it)")
     instance = Chromium(executable)
     yield instance
     instance.close()
@@ -412,7 +412,7 @@ def test_checks_catch_a_broken_page(tmp_path):
     assert "#top" not in static
 
     executable = chromium_executable()
-    _require(executable is not None, "Debian's chromium is not installed (.ci/build_book.sh installs it)")
+    _require(executable is not None, "Debian's chromium is not installed (.ci/setup.sh installs it)")
     instance = Chromium(executable)
     try:
         problems, _ = browser_problems(instance, page)

@@ -1,6 +1,9 @@
-"""The OMPL comparison harness (benchmarks/peers.py): inputs, the shared validity check, a smoke run."""
+"""The OMPL comparison (segplan.studies.peers, benchmarks/peers.py): inputs, the shared validity
+check, a smoke run, and the stored results chapter 8 reads."""
 
 import math
+import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -8,11 +11,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # benchmarks/ is not an installed package
-    sys.path.insert(0, str(ROOT))
+from segplan.studies import peers
 
-from benchmarks import peers  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
+STORED = ROOT / "benchmarks" / "results" / "peers_ompl.csv"
 
 needs_ompl = pytest.mark.skipif(
     not peers.ompl_available(),
@@ -102,16 +104,69 @@ def test_configs():
     assert full.scenarios == peers.shipped_scenarios()
     dubins = [j for j in full.jobs() if j[4] == "dubins"]
     assert len(dubins) == len(full.scenarios) * 3 * 3 * 5
-    assert len(full.key()) == 16 and full.key() == peers.full_config().key()
-    assert peers.quick_config().key() != full.key()
+    assert len(set(full.jobs())) == len(full.jobs())
+
+
+def test_stored_results_cover_every_floor_planner_budget_and_seed():
+    """benchmarks/results/peers_ompl.csv holds a run for every shipped floor x planner x budget
+    x seed of the full study (and nothing else), with its provenance and the figures' poses."""
+    table, paths, meta = peers.read_ompl_results(STORED)
+    full = peers.full_config()
+    assert peers.missing_runs(table, full) == []
+    assert len(table) == len(full.jobs()), "runs outside the full study, or repeated"
+    assert set(table["scenario"]) == set(peers.shipped_scenarios())
+    for key in ("date", "machine", "ompl", "commit", "command"):
+        assert meta[key], key
+    assert meta["ompl"] != "none" and len(meta["commit"]) == 40
+    assert meta["config"]["blocks"] == [
+        {k: list(v) if isinstance(v, tuple) else v for k, v in vars(b).items()} for b in full.blocks
+    ]
+    best = peers.best_paths(table, dict.fromkeys(paths))  # keys only: which runs the figures draw
+    assert set(best) == set(paths)
+    for P in paths.values():
+        assert P.ndim == 2 and P.shape[1] == 3 and len(P) >= 2
+
+
+def test_stored_results_round_trip(tmp_path):
+    rows = [
+        {"scenario": "s", "method": "BITstar", "space": "dubins", "budget": 1.0, "seed": s, "solved": True,
+         "valid": True, "front_length": 10.0 + s, "messages": "" if s == 1 else "Warning: x"}
+        for s in (1, 2)
+    ]  # fmt: skip
+    poses = {
+        ("s", "BITstar", "dubins", 1.0, s): np.array([[0.0, 0.0, 0.0], [1.23456, 2.0, 0.123456]])
+        for s in (1, 2)
+    }
+    peers.write_ompl_results(pd.DataFrame(rows), poses, tmp_path / "r.csv", {"date": "today"})
+    table, paths, meta = peers.read_ompl_results(tmp_path / "r.csv")
+    assert meta == {"date": "today"} and list(table["messages"]) == ["", "Warning: x"]
+    assert list(paths) == [("s", "BITstar", "dubins", 1.0, 1)]  # the shortest valid run only
+    assert paths[("s", "BITstar", "dubins", 1.0, 1)][1].tolist() == [1.235, 2.0, 0.1235]
+    with pytest.raises(ValueError, match="csv_path"):
+        peers.read_ompl_results(tmp_path / "none.csv")
+
+
+@needs_ompl
+def test_command_line_quick_run(tmp_path):
+    """`python benchmarks/peers.py --quick` runs end to end and stores its runs."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    out = tmp_path / "quick.csv"
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "peers.py"), "--quick", "--out", str(out)],
+        capture_output=True, text=True, timeout=600, env=env, check=False,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    table, _, meta = peers.read_ompl_results(out)
+    assert peers.missing_runs(table, peers.quick_config()) == []
+    assert "--quick" in meta["command"]
+    assert "goal at 0.05 s" in proc.stdout
 
 
 @needs_ompl
 def test_ompl_smoke_run_one_scenario():
     """One scenario, a tiny budget, one seed: the harness runs end to end, paths measured."""
     cfg = peers.quick_config(("single_obstacle",))
-    result = peers.run_study(cfg)
-    t = result.table
+    t = pd.concat([peers.run_segplan(cfg), peers.run_ompl(cfg)[0]], ignore_index=True)
     assert set(t["method"]) == {"segplan h'=a", "segplan h'=a +refine", "RRTstar"}
     assert set(t["space"]) == {"segplan", "dubins", "reedsshepp"}
     for _, ours in t[t["space"] == "segplan"].iterrows():

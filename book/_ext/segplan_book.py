@@ -2,9 +2,10 @@
 
 Loaded through ``sphinx.local_extensions`` in ``book/_config.yml``. It
 
-* stops the build with a clear message when the vendored MathJax (installed by
-  ``.ci/build_book.sh`` into ``book/_vendor/mathjax``) is missing, instead of producing
-  pages whose math silently fails to render;
+* stops the build with a clear message when the offline MathJax (the Python package
+  ``sphinx-mathjax-offline``, which ships MathJax 3.2.2 and copies it into
+  ``_build/html/_static/mathjax``) is missing or ``mathjax_path`` names a file it does not
+  ship, instead of producing pages whose math silently fails to render;
 * drops sphinx-thebe's scripts from every page: the book has no live-code button
   (``launch_buttons.thebe: false``), yet jupyter-book 1.0.4 always loads sphinx-thebe, whose
   inline ``const THEBE_JS_URL = "https://unpkg.com/..."`` is emitted twice per page and
@@ -16,6 +17,7 @@ Loaded through ``sphinx.local_extensions`` in ``book/_config.yml``. It
 
 from __future__ import annotations
 
+import importlib.util
 from pathlib import Path
 
 from sphinx.application import Sphinx
@@ -29,21 +31,32 @@ def _is_remote(url: str) -> bool:
     return "://" in url or url.startswith("//")
 
 
+def mathjax_dir() -> Path | None:
+    """The MathJax files of the ``sphinx-mathjax-offline`` package, or None without it."""
+    spec = importlib.util.find_spec("sphinx-mathjax-offline")
+    if spec is None or spec.origin is None:
+        return None
+    return Path(spec.origin).parent / "static" / "mathjax"
+
+
 def check_mathjax(app: Sphinx) -> None:
-    """The MathJax script named by ``mathjax_path`` exists in a local static path."""
+    """``mathjax_path`` names a file that ``sphinx-mathjax-offline`` ships (offline math)."""
     if app.builder.format != "html":
         return
     path = str(app.config.mathjax_path)
     if _is_remote(path):
         raise ConfigError(f"mathjax_path must name a file shipped with the book (offline), got {path!r}")
-    base = Path(app.confdir or app.srcdir)
-    for static in app.config.html_static_path:
-        if (base / static / path).is_file():
-            return
-    raise ConfigError(
-        f"MathJax not found: {path!r} is in none of html_static_path {app.config.html_static_path!r} "
-        f"under {base}. Run .ci/build_book.sh, which installs the npm package mathjax into book/_vendor."
-    )
+    if "sphinx-mathjax-offline" not in app.config.extensions:
+        raise ConfigError("the book needs the extension sphinx-mathjax-offline (sphinx.extra_extensions)")
+    folder = mathjax_dir()
+    if folder is None:
+        raise ConfigError(
+            "MathJax not found: the Python package sphinx-mathjax-offline is not installed "
+            "(pip install -r environment.txt, or pip install -e '.[book]')"
+        )
+    name = path.removeprefix("mathjax/")
+    if not (folder / name).is_file():
+        raise ConfigError(f"mathjax_path {path!r}: sphinx-mathjax-offline ships no {name!r} in {folder}")
 
 
 def _is_thebe(asset) -> bool:

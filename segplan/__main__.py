@@ -1,0 +1,7 @@
+"""``python -m segplan``: the ``segplan`` command line (see :mod:`segplan.cli`)."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,153 @@
+"""segplan as its users meet it: the shipped scenarios as package data, ``--version``,
+``python -m segplan``, the animation, and a wheel that installs and plans in a clean venv."""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import venv
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import segplan
+from segplan.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_shipped_scenarios_are_the_repository_files():
+    names = segplan.shipped_scenarios()
+    assert names == tuple(sorted(p.stem for p in (ROOT / "scenarios").glob("*.json")))
+    for name in names:
+        by_name = segplan.load_scenario(name)
+        by_path = segplan.load_scenario(ROOT / "scenarios" / f"{name}.json")
+        assert by_name.to_json() == by_path.to_json()
+
+
+def test_unknown_scenario_name_is_a_clear_error():
+    with pytest.raises(
+        segplan.ScenarioError, match="'no_such_floor' is neither a file nor a shipped scenario"
+    ):
+        segplan.load_scenario("no_such_floor")
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["--version"])
+    assert exc.value.code == 0
+    assert capsys.readouterr().out.strip() == f"segplan {segplan.__version__}"
+
+
+def test_python_dash_m_segplan():
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    out = subprocess.run(
+        [sys.executable, "-m", "segplan", "plan", "single_obstacle", "--json"],
+        capture_output=True, text=True, env=env, timeout=300, check=True,
+    ).stdout  # fmt: skip
+    assert json.loads(out)["found"] is True
+
+
+def test_animate_gif(tmp_path, capsys):
+    gif = tmp_path / "plan.gif"
+    assert main(["plan", "single_obstacle", "--animate", str(gif)]) == 0
+    assert f"animation   {gif}" in capsys.readouterr().out
+    with Image.open(gif) as im:
+        assert im.format == "GIF" and im.n_frames == segplan.animate.FRAMES
+
+
+def test_animation_frames_follow_the_front_wheel():
+    from segplan import animate
+
+    sc = segplan.load_scenario("single_obstacle")
+    plan = segplan.plan_scenario(sc)
+    poses = segplan.plan_poses(plan)
+    idx = animate._frame_indices(poses, sc.L, 11)
+    assert idx[0] == 0 and idx[-1] == len(poses) - 1 and np.all(np.diff(idx) > 0)
+    B = poses[:, :2] + sc.L * np.column_stack((np.cos(poses[:, 2]), np.sin(poses[:, 2])))
+    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(B, axis=0).T))]
+    gaps = np.diff(s[idx])
+    assert gaps.max() - gaps.min() < 0.05 * gaps.mean()  # equal steps of the front wheel (1 cm samples)
+    html = animate.to_html(animate.animate_plan(plan, sc, frames=4))
+    assert html.count("data:image/png;base64") == 4
+    assert "font-awesome" not in html and "fa fa-" not in html  # the CDN stylesheet and its icons
+    assert not re.search(r"(?:src|href)\s*=\s*[\"']?(?:https?:)?//", html)
+    with pytest.raises(ValueError, match="frames"):
+        animate.animate_path(poses, sc.L, frames=1)
+    with pytest.raises(ValueError, match="poses"):
+        animate.animate_path(poses[:, :2], sc.L)
+
+
+def test_license_and_citation():
+    assert (ROOT / "LICENSE").read_text().startswith("MIT License")
+    import tomllib
+
+    import yaml
+
+    assert tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["license"]["text"] == "MIT"
+    cff = yaml.safe_load((ROOT / "CITATION.cff").read_text())
+    assert cff["license"] == "MIT" and cff["version"] == segplan.__version__
+    paper = cff["references"][0]
+    assert paper["year"] == 1989 and [a["family-names"] for a in paper["authors"]] == [
+        "Campoy", "Bobadilla", "Aracil", "Salichs", "Moreno",
+    ]  # fmt: skip
+
+
+def _offline_build_possible() -> bool:
+    try:
+        import build  # noqa: F401
+        import setuptools  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+@pytest.mark.skipif(
+    not _offline_build_possible(), reason="python -m build (package 'build') is not installed"
+)
+def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
+    """`python -m build` makes a wheel (from the sdist) that carries the shipped scenarios:
+    installed by pip (offline, --no-deps) in a fresh venv (dependencies seen from this
+    environment), `segplan plan fig5_example1` plans from any directory."""
+    src = tmp_path / "src"
+    shutil.copytree(
+        ROOT, src, symlinks=True,
+        ignore=shutil.ignore_patterns(".git", ".venv", "_build", "*.egg-info", "__pycache__", "dist"),
+    )  # fmt: skip
+    proc = subprocess.run(
+        [sys.executable, "-m", "build", "--no-isolation", "--outdir", str(tmp_path / "dist"), str(src)],
+        capture_output=True, text=True, timeout=600, check=False,
+    )  # fmt: skip
+    if proc.returncode != 0 and "No module named" in proc.stderr + proc.stdout:
+        pytest.skip(f"cannot build offline: {proc.stderr[-500:]}")
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
+    wheel = next((tmp_path / "dist").glob("segplan-*.whl"))
+    with zipfile.ZipFile(wheel) as zf:
+        assert "segplan/scenarios/fig5_example1.json" in zf.namelist()
+    env_dir = tmp_path / "venv"
+    venv.EnvBuilder(with_pip=True).create(env_dir)
+    py = env_dir / "bin" / "python"
+    site = subprocess.run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          capture_output=True, text=True, check=True).stdout.strip()  # fmt: skip
+    # the dependencies (numpy, scipy, ...) from this environment, without its own segplan
+    # (a plain path line: the .pth files there, e.g. an editable segplan, are not processed)
+    deps = [p for p in sys.path if p.endswith("site-packages") and Path(p, "numpy").is_dir()]
+    Path(site, "deps-from-test-env.pth").write_text("\n".join(deps) + "\n")
+    subprocess.run([py, "-m", "pip", "install", "-q", "--no-index", "--no-deps", str(wheel)],
+                   capture_output=True, text=True, timeout=300, check=True)  # fmt: skip
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    run = subprocess.run(
+        [env_dir / "bin" / "segplan", "plan", "fig5_example1", "--json"],
+        capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300, check=False,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr[-2000:]
+    out = json.loads(run.stdout)
+    assert out["found"] is True and out["scenario"] == "fig5_example1"
+    where = subprocess.run([py, "-c", "import segplan; print(segplan.__file__)"], capture_output=True,
+                           text=True, cwd=tmp_path, env=env, check=True).stdout  # fmt: skip
+    assert where.startswith(site), where  # the installed copy, not this tree
