@@ -463,6 +463,20 @@ def test_cubic_points_find_real_roots(roots, scale, sign):
             )
 
 
+@given(
+    st.floats(-1.0, 2.0),
+    st.lists(st.floats(0.05, 1.0), min_size=2, max_size=2),
+    st.floats(0.01, 100.0),
+    st.sampled_from([1.0, -1.0]),
+)
+def test_cubic_points_find_each_distinct_root(first, gaps, scale, sign):
+    """Well separated roots: each is returned once, accurately (one root thrice fails)."""
+    roots = first + np.cumsum([0.0, *gaps])
+    a3, a2, a1, a0 = np.poly(roots) * scale * sign
+    got = col._cubic_points(np.array([a3]), np.array([a2]), np.array([a1]), np.array([a0]))[0]
+    np.testing.assert_allclose(np.sort(got), roots, rtol=0.0, atol=1e-9)
+
+
 def test_quick_rejection_is_sound():
     rng = np.random.default_rng(5)
     for _ in range(400):
