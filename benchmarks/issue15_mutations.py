@@ -112,6 +112,22 @@ MUTATIONS = (
         "certain_failures ignores the walls",
     ),
     Mutation(
+        "front_fallback_free",
+        "segplan/collision.py",
+        "            return float(cand[np.argmin((sw.front(cand) @ N.T - H).max(axis=1))])",
+        "            return None",
+        ("tests/test_collision_fallbacks.py",),
+        "the front-wheel fallback answers 'free' instead of 'collision'",
+    ),
+    Mutation(
+        "wall_fallback_free",
+        "segplan/collision.py",
+        "        if e <= tol or np.count_nonzero(live) > _FRONT_MAX_PIECES:\n            return True",
+        "        if e <= tol or np.count_nonzero(live) > _FRONT_MAX_PIECES:\n            return False",
+        ("tests/test_collision_fallbacks.py",),
+        "the walls' front-wheel fallback answers 'inside' instead of 'out'",
+    ),
+    Mutation(
         "cubic_one_root",
         "segplan/collision.py",
         "    r = np.linalg.eigvals(comp).real\n",
