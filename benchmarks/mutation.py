@@ -150,6 +150,8 @@ def main(argv=None) -> int:
                 f"{r['other']} unclassified; {r['mutants']} mutants in all; {r['seconds']:.0f} s",
                 flush=True,
             )
+            for name in r["uncovered"]:
+                print(f"    no test calls it: {name}")
             for name in r["survivors"]:
                 print(f"    survived: {name}")
                 if args.show:
