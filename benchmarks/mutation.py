@@ -41,7 +41,7 @@ ROOT = Path(__file__).resolve().parent.parent
 TARGETS = {
     "search": ["tests/test_search_oracles.py", "tests/test_search.py"],
     "refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
-    "expansion": ["tests/test_expansion.py", "tests/test_search_oracles.py"],
+    "expansion": ["tests/test_expansion.py", "tests/test_fast_paths.py", "tests/test_search_oracles.py"],
     "collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "cost": ["tests/test_approx.py", "tests/test_romberg.py", "tests/test_fast_paths.py"],
     "frame": ["tests/test_frame.py"],

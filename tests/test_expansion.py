@@ -278,6 +278,14 @@ def test_expander_rejects_bad_options():
     ):
         with pytest.raises(ValueError, match=name):
             Expander(ws, **kw)
+    # the closed ends of the documented ranges are accepted
+    for kw in (
+        {"spline_weight": 0.0},
+        {"spline_weight": 1.0},
+        {"turn_angles": (math.pi / 2,)},
+        {"max_iterations": 1},
+    ):
+        Expander(ws, **kw)
 
 
 @settings(max_examples=60)
