@@ -430,8 +430,12 @@ def test_stats_and_exports():
     far = np.array([[100.0, 100], [101, 100], [101, 101]])
     near = np.array([[2.0, 0.3], [2.5, 0.3], [2.5, 0.8]])
     assert not col.collides(u, far, stats=st_)
-    col.collides(u, near, stats=st_)
+    hit = col.collides(u, near, stats=st_)
     assert (st_.calls, st_.rejected, st_.exact) == (2, 1, 1)
+    assert st_.collisions == int(hit)  # one collision counted per colliding query
+    through = np.array([[0.5, -5.0], [1.5, -5.0], [1.5, 5.0], [0.5, 5.0]])  # across the whole path
+    assert col.collides(u, through, stats=st_)
+    assert (st_.calls, st_.collisions) == (3, int(hit) + 1)
     st_.reset()
     assert st_.calls == 0
     for name in (
