@@ -43,7 +43,12 @@ TARGETS = {
     "refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
     "expansion": ["tests/test_expansion.py", "tests/test_fast_paths.py", "tests/test_search_oracles.py"],
     "collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
-    "cost": ["tests/test_approx.py", "tests/test_romberg.py", "tests/test_fast_paths.py"],
+    "cost": [
+        "tests/test_approx.py",
+        "tests/test_derivation.py",
+        "tests/test_romberg.py",
+        "tests/test_fast_paths.py",
+    ],
     "frame": ["tests/test_frame.py"],
 }
 
