@@ -432,8 +432,12 @@ def test_stats_and_exports():
     far = np.array([[100.0, 100], [101, 100], [101, 101]])
     near = np.array([[2.0, 0.3], [2.5, 0.3], [2.5, 0.8]])
     assert not col.collides(u, far, stats=st_)
-    col.collides(u, near, stats=st_)
+    hit = col.collides(u, near, stats=st_)
     assert (st_.calls, st_.rejected, st_.exact) == (2, 1, 1)
+    assert st_.collisions == int(hit)  # one collision counted per colliding query
+    through = np.array([[0.5, -5.0], [1.5, -5.0], [1.5, 5.0], [0.5, 5.0]])  # across the whole path
+    assert col.collides(u, through, stats=st_)
+    assert (st_.calls, st_.collisions) == (3, int(hit) + 1)
     st_.reset()
     assert st_.calls == 0
     for name in ("collides", "union_free", "union_in_bounds", "CollisionStats"):
@@ -458,6 +462,20 @@ def test_cubic_points_find_real_roots(roots, scale, sign):
                 np.nanmin(np.abs(got - r)) < 1e-5
                 or np.nanmin(np.abs(np.polyval([a3, a2, a1, a0], got))) < 1e-12 * scale
             )
+
+
+@given(
+    st.floats(-1.0, 2.0),
+    st.lists(st.floats(0.05, 1.0), min_size=2, max_size=2),
+    st.floats(0.01, 100.0),
+    st.sampled_from([1.0, -1.0]),
+)
+def test_cubic_points_find_each_distinct_root(first, gaps, scale, sign):
+    """Well separated roots: each is returned once, accurately (one root thrice fails)."""
+    roots = first + np.cumsum([0.0, *gaps])
+    a3, a2, a1, a0 = np.poly(roots) * scale * sign
+    got = swp.cubic_points(np.array([a3]), np.array([a2]), np.array([a1]), np.array([a0]))[0]
+    np.testing.assert_allclose(np.sort(got), roots, rtol=0.0, atol=1e-9)
 
 
 def test_quick_rejection_is_sound():

@@ -29,6 +29,14 @@ def test_bump_integrals_by_direct_quadrature():
     w /= 3.0 * (s.size - 1)
     assert w @ gp**2 == pytest.approx(2 / 15 * (m0**2 + m1**2 - m0 * m1 / 2), rel=1e-12)
     assert w @ gpp**2 == pytest.approx(4 * (m0**2 + m1**2 + m0 * m1), rel=1e-12)
+    # the same numbers from segplan.derivation's closed forms (unit chord, X = 1)
+    steps = {st.title: st for st in dv.bump_integral_steps()}
+    values = {dv.X: 1, dv.mbar0: m0, dv.mbar1: m1, dv.t: 0}
+    assert float(steps["int g'^2 dx = (2 X / 15) Q1"].rhs.subs(values)) == pytest.approx(w @ gp**2, rel=1e-12)
+    assert float(steps["int f''^2 dx = 4 Q2 / X"].rhs.subs(values)) == pytest.approx(w @ gpp**2, rel=1e-12)
+    # and from the bump itself, differentiated by sympy and sampled on the grid
+    g1 = sp.lambdify(dv.x, sp.diff(dv.bump(), dv.x).subs({dv.X: 1, dv.mbar0: m0, dv.mbar1: m1}))
+    assert np.allclose(g1(s), gp, rtol=0, atol=1e-12)
 
 
 def test_simpson_reproduces_the_ocr_constants_and_nothing_else_does():

@@ -118,6 +118,12 @@ def test_case_a_formula_derived_symbolically():
     a_fn = sp.lambdify(t, sp.Abs(area.subs(num)))
     t0 = float(expected.subs(num))
     assert a_fn(t0) < min(a_fn(t0 - 1e-3), a_fn(t0 + 1e-3))
+    # segplan's closed form is this frame, and its chord slopes are the symbolic mbar_i
+    phi0, phi1 = math.atan(0.7), math.atan(-0.3)
+    alpha_ = parabola_alpha(phi0, phi1)
+    assert math.tan(alpha_) == pytest.approx(t0, rel=1e-12)
+    mb = [float(e.subs({m0: 0.7, m1: -0.3, t: math.tan(alpha_)})) for e in (mb0, mb1)]
+    assert np.allclose(chord_slopes(phi0, phi1, alpha_), mb, rtol=1e-12, atol=1e-12)
 
 
 @given(st.floats(0.5 * DEG, 89 * DEG), st.floats(-89 * DEG, -0.5 * DEG), ratio)

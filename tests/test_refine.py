@@ -199,6 +199,7 @@ def test_certain_failures_never_reject_a_free_link(seed):
     A, B, d, psi, phi0, phi1 = A[keep], B[keep], d[keep], psi[keep], phi0[keep], phi1[keep]
     alpha = heuristic_alpha(d, phi0, phi1, sc.robot.L)
     bad = certain_failures(ws, A, psi - alpha, *cubic_coefficients(d, phi0, phi1, alpha))
+    assert bad.any()  # something was flagged, so the claim below was exercised
     for k in np.flatnonzero(bad):
         u = Union(Pose(*A[k]), Pose(*B[k]), float(alpha[k]), sc.robot.L)
         assert not ws.union_free(u), k

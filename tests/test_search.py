@@ -141,6 +141,8 @@ def test_enclosed_goal_raises_no_path_error():
     assert exc.expanded >= 1 and exc.generated >= 1 and exc.seconds >= 0
     assert isinstance(exc.best, Plan) and exc.best.nodes[0] == Pose(0.0, 0.0, 0.0)
     assert "no path" in str(exc)
+    if exc.reason == "exhausted":
+        assert "every reachable node was expanded" in str(exc)
 
 
 def test_limits_stop_the_search():
@@ -148,9 +150,11 @@ def test_limits_stop_the_search():
     with pytest.raises(NoPathError) as info:
         plan_scenario(sc, max_expansions=1)
     assert info.value.reason == "expansions" and info.value.expanded == 1
+    assert "the expansion limit max_expansions=1 was reached" in str(info.value)
     with pytest.raises(NoPathError) as info:
         plan_scenario(sc, time_limit=1e-9)
     assert info.value.reason == "time"
+    assert "the time limit time_limit=1e-09 s was reached" in str(info.value)
 
 
 # -- bad input -----------------------------------------------------------------------------
@@ -197,6 +201,7 @@ def test_characteristic_dimension():
     assert math.isclose(characteristic_dimension([a, b]), 2.0)
     assert math.isclose(characteristic_dimension([a, b], bounds=(-0.5, -0.5, 10, 10)), 0.5)
     assert characteristic_dimension([], bounds=(0, 0, 4, 3)) == 3.0
+    assert characteristic_dimension([]) == 1.0 and characteristic_dimension([], fallback=2.5) == 2.5
 
 
 def test_heuristic_c_limits():

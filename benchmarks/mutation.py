@@ -1,0 +1,171 @@
+"""Mutation testing of segplan with mutmut (issue 15): chosen modules, a random sample each.
+
+Not part of CI's default run (it takes minutes to about half an hour). For each chosen
+module the repository (package, tests, scenarios) is copied into a temporary directory
+with a ``[tool.mutmut]`` configuration that mutates only that module and runs only its
+targeted tests (``TARGETS``); mutmut then runs, for each mutant, the targeted tests that
+call the mutated function. The working tree is never touched.
+
+A sample is drawn at random (``--seed``) among the module's mutants; mutmut runs twice per
+module (once to generate the mutants and collect which tests call which function, once on
+the sample). The report gives, per module, the mutants killed, survived, timed out (a
+mutant that loops: counted as killed, as mutmut's own "timeout" is a detection) and with no
+covering test, the kill rate over the sample, and the survivors' names (``--show`` prints
+their diffs: read them, and list the equivalent ones with the reason).
+
+Run, niced (the machine is shared)::
+
+    PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --modules search refine --sample 20
+    PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --sample 40 --json mutation.json
+
+Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import random
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+#: Targeted tests per module: fast, and between them guarding the module's behaviour.
+TARGETS = {
+    "search": ["tests/test_search_oracles.py", "tests/test_search.py"],
+    "refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
+    "expansion": ["tests/test_expansion.py", "tests/test_fast_paths.py", "tests/test_search_oracles.py"],
+    "collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
+    "cost": [
+        "tests/test_approx.py",
+        "tests/test_derivation.py",
+        "tests/test_romberg.py",
+        "tests/test_fast_paths.py",
+    ],
+    "frame": ["tests/test_frame.py"],
+}
+
+KILLED = {1, 3}  # pytest failed (3: an internal error, counted as a kill by mutmut)
+TIMEOUT = {36, -24, 24, 152, 255}
+NO_TESTS = {5, 33}
+
+CONFIG = """
+[tool.mutmut]
+source_paths = ["segplan"]
+only_mutate = ["segplan/{module}.py"]
+also_copy = ["scenarios"]
+pytest_add_cli_args = ["-p", "no:cacheprovider", "-q"]
+pytest_add_cli_args_test_selection = {tests}
+use_git_change_detection = false
+"""
+
+
+def _pyproject(module: str) -> str:
+    text = (ROOT / "pyproject.toml").read_text()
+    # drop the repository's own defaults: from the table's header to the next table
+    text = re.sub(r"\n\[tool\.mutmut\]\n(?:(?!\n\[).)*", "\n", text, flags=re.DOTALL)
+    return text + CONFIG.format(module=module, tests=json.dumps(TARGETS[module]))
+
+
+def _mutmut(args, cwd: Path, python: str, log) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH="", HYPOTHESIS_STORAGE_DIRECTORY=str(cwd / ".hypothesis"))
+    proc = subprocess.run([python, "-m", "mutmut", *args], cwd=cwd, env=env, capture_output=True, text=True)
+    log.write(proc.stdout[-4000:] + proc.stderr[-4000:])
+    return proc
+
+
+def _meta(cwd: Path, module: str) -> dict:
+    path = cwd / "mutants" / "segplan" / f"{module}.py.meta"
+    return json.loads(path.read_text())["exit_code_by_key"] if path.exists() else {}
+
+
+def run_module(module: str, sample: int, seed: int, python: str, workers: int, show: bool, log) -> dict:
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix=f"mutmut-{module}-") as tmp:
+        tmp = Path(tmp)
+        for part in ("segplan", "tests", "scenarios"):
+            shutil.copytree(ROOT / part, tmp / part, ignore=shutil.ignore_patterns("__pycache__"))
+        (tmp / "pyproject.toml").write_text(_pyproject(module))
+        # 1. generate the mutants and the test-to-function stats (a name that matches nothing)
+        _mutmut(["run", "--max-children", str(workers), "segplan.nothing_matches_this"], tmp, python, log)
+        names = sorted(_meta(tmp, module))
+        if not names:
+            raise RuntimeError(f"mutmut generated no mutants for {module} (see the log)")
+        chosen = sorted(random.Random(f"{seed}:{module}").sample(names, min(sample, len(names))))
+        # 2. run the sample
+        _mutmut(["run", "--max-children", str(workers), *chosen], tmp, python, log)
+        codes = _meta(tmp, module)
+        result = {"module": module, "mutants": len(names), "sample": len(chosen)}
+        groups = {"killed": [], "timeout": [], "survived": [], "no_tests": [], "other": []}
+        for name in chosen:
+            code = codes.get(name)
+            key = (
+                "killed"
+                if code in KILLED
+                else "timeout"
+                if code in TIMEOUT
+                else "survived"
+                if code == 0
+                else "no_tests"
+                if code in NO_TESTS
+                else "other"
+            )
+            groups[key].append(name if key != "other" else f"{name} (exit {code})")
+        result.update({k: len(v) for k, v in groups.items()})
+        result["survivors"] = groups["survived"]
+        result["uncovered"] = groups["no_tests"]
+        result["unclassified"] = groups["other"]
+        decided = len(chosen) - len(groups["other"])
+        caught = len(groups["killed"]) + len(groups["timeout"])
+        result["kill_rate"] = caught / decided if decided else float("nan")
+        if show:
+            result["diffs"] = {
+                name: _mutmut(["show", name], tmp, python, log).stdout for name in groups["survived"]
+            }
+    result["seconds"] = time.perf_counter() - t0
+    return result
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--modules", nargs="+", default=list(TARGETS), choices=list(TARGETS))
+    parser.add_argument("--sample", type=int, default=40, help="mutants per module (random sample)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--python", default=sys.executable)
+    parser.add_argument("--json", type=Path, help="write the results here")
+    parser.add_argument("--show", action="store_true", help="keep the survivors' diffs")
+    parser.add_argument("--log", type=Path, default=Path(tempfile.gettempdir()) / "segplan-mutmut.log")
+    args = parser.parse_args(argv)
+    results = []
+    with open(args.log, "w") as log:
+        for module in args.modules:
+            r = run_module(module, args.sample, args.seed, args.python, args.workers, args.show, log)
+            results.append(r)
+            print(
+                f"{module:10s} {r['killed'] + r['timeout']:3d}/{r['sample'] - r['other']:3d} killed "
+                f"({100 * r['kill_rate']:5.1f} %), {r['survived']} survived, {r['no_tests']} without tests, "
+                f"{r['other']} unclassified; {r['mutants']} mutants in all; {r['seconds']:.0f} s",
+                flush=True,
+            )
+            for name in r["uncovered"]:
+                print(f"    no test calls it: {name}")
+            for name in r["survivors"]:
+                print(f"    survived: {name}")
+                if args.show:
+                    print(r["diffs"][name])
+    if args.json:
+        meta = {"when": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "host": os.uname().nodename, "argv": sys.argv}
+        args.json.write_text(json.dumps({"meta": meta, "results": results}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
