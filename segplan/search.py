@@ -64,6 +64,9 @@ from .world import Robot, Scenario, make_scenario
 
 HEURISTICS = ("a", "b", "c")
 COSTS = ("longd", "distance")
+#: ``planner`` of :func:`plan_scenario`: the lattice planner (beyond the paper, the default)
+#: or the paper's search.
+PLANNERS = ("lattice", "paper")
 
 
 class NoPathError(RuntimeError):
@@ -266,8 +269,9 @@ def plan(
     heuristic : {"a", "b", "c"}
         The paper's ``h'`` (see the module docstring).
     **options
-        Passed to :func:`plan_scenario` (``cost``, ``version``, ``ds``, ``alpha_method``,
-        ``max_expansions``, ``time_limit``, ``expander``).
+        Passed to :func:`plan_scenario` (``planner``, ``refine``, ``clearance``, ``cost``,
+        ``version``, ``ds``, ``alpha_method``, ``max_expansions``, ``time_limit``,
+        ``expander``, ``lattice``).
 
     Returns
     -------
@@ -300,11 +304,14 @@ def plan_scenario(
     version: str = "b",
     ds: float | None = None,
     alpha_method: str = "heuristic",
-    max_expansions: int = 3000,
+    max_expansions: int | None = None,
     time_limit: float = 10.0,
     max_turn_chain: int = 4,
     expander: dict | None = None,
-    refine: bool | dict = False,
+    refine: bool | dict | None = None,
+    planner: str = "lattice",
+    clearance: float = 0.0,
+    lattice: dict | None = None,
 ) -> Plan:
     """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
 
@@ -325,8 +332,9 @@ def plan_scenario(
         :func:`characteristic_dimension` of the enlarged obstacles.
     alpha_method : {"heuristic", "exact"}
         Optimal reference system method (section "Optimal reference system").
-    max_expansions : int
-        Expansions before giving up (NoPathError, ``reason="expansions"``).
+    max_expansions : int, optional
+        Expansions before giving up (NoPathError, ``reason="expansions"``); default 3000
+        for the paper's search, 200000 for the lattice.
     time_limit : float
         Seconds before giving up (NoPathError, ``reason="time"``).
     max_turn_chain : int
@@ -334,10 +342,23 @@ def plan_scenario(
         make a full circle. Bounds the part of the graph built from turn states.
     expander : dict, optional
         Further keyword arguments of :class:`Expander` (``max_iterations``, ``r0``, ...).
-    refine : bool or dict
+    refine : bool or dict, optional
         Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
         splits, local moves of the nodes), with default options (True) or these
         keyword arguments (a dict). ``Plan.seconds`` then counts search and refinement.
+        Default: True for the lattice planner, False for the paper's search.
+    planner : {"lattice", "paper"}
+        ``"lattice"`` (default, beyond the paper): the resolution-complete A* over a
+        lattice of cubic-union primitives (:mod:`segplan.lattice`); ``heuristic``,
+        ``cost``, ``version``, ``ds``, ``alpha_method``, ``max_turn_chain`` and
+        ``expander`` then do not apply. ``"paper"``: the paper's search (this module).
+    clearance : float
+        Safety margin (m, >= 0) beyond ``half_width``: the search and the refinement plan
+        around obstacles enlarged by ``half_width + clearance`` and walls moved in as
+        much (0: the paper's model). The start and goal must be that far from them.
+    lattice : dict, optional
+        Further keyword arguments of :func:`segplan.lattice.lattice_search`
+        (``resolution``, ``weight``, ``retry``, ...).
 
     Returns
     -------
@@ -347,14 +368,36 @@ def plan_scenario(
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     _check_choice(heuristic, HEURISTICS, "heuristic")
     _check_choice(cost, COSTS, "cost")
+    _check_choice(planner, PLANNERS, "planner")
+    if refine is None:
+        refine = planner == "lattice"
     if not (isinstance(refine, bool) or isinstance(refine, dict)):
         raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
+    if max_expansions is None:
+        max_expansions = 3000 if planner == "paper" else 200_000
+    if (
+        isinstance(clearance, bool)
+        or not isinstance(clearance, int | float)
+        or not (math.isfinite(clearance) and clearance >= 0)
+    ):
+        raise ValueError(f"clearance must be a finite number of metres >= 0, got {clearance!r}")
+    if clearance > 0:
+        scenario = with_clearance(scenario, clearance)
     if isinstance(max_expansions, bool) or int(max_expansions) != max_expansions or max_expansions < 1:
         raise ValueError(f"max_expansions must be an integer >= 1, got {max_expansions!r}")
     if isinstance(max_turn_chain, bool) or int(max_turn_chain) != max_turn_chain or max_turn_chain < 0:
         raise ValueError(f"max_turn_chain must be an integer >= 0, got {max_turn_chain!r}")
     if not (isinstance(time_limit, int | float) and math.isfinite(time_limit) and time_limit > 0):
         raise ValueError(f"time_limit must be a positive number of seconds, got {time_limit!r}")
+    if planner == "lattice":
+        from .lattice import lattice_search
+
+        found, ex = lattice_search(
+            scenario, max_expansions=int(max_expansions), time_limit=float(time_limit), **(lattice or {})
+        )
+        if refine is False:
+            return found
+        return refine_with(found, ex, **({} if refine is True else refine))
     robot = scenario.robot
     L = robot.L
     # off-line work, outside the planning time (the paper: "the processing of the model of
@@ -379,6 +422,29 @@ def plan_scenario(
     if refine is False:
         return found
     return refine_with(found, ex, **({} if refine is True else refine))
+
+
+def with_clearance(scenario: Scenario, clearance: float) -> Scenario:
+    """The scenario with its robot's ``half_width`` grown by ``clearance`` (m): the safety margin.
+
+    Raises
+    ------
+    ValueError
+        (``segplan.ScenarioError``) If the start or goal is nearer than ``clearance`` to an
+        enlarged obstacle or wall.
+    """
+    from .world import ScenarioError
+
+    robot = scenario.robot
+    grown = Robot(robot.L, robot.half_width + float(clearance), robot.max_steer)
+    try:
+        return make_scenario(
+            grown, scenario.start, scenario.goal, scenario.obstacles, scenario.bounds,
+            name=scenario.name, description=scenario.description, path=scenario.path,
+            source=f"clearance={clearance:g}",
+        )  # fmt: skip
+    except ScenarioError as exc:
+        raise ScenarioError(f"{exc} (clearance {clearance:g} m beyond half_width)") from None
 
 
 class _Search:
