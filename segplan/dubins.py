@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-__all__ = ["dubins_length"]
+__all__ = ["dubins_length", "dubins_length_scalar"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -80,3 +80,48 @@ def dubins_length(x0, y0, theta0, x1, y1, theta1, R: float) -> np.ndarray:
         t = _mod(-a - np.arctan2(ca - cb, d + sa - sb) + 0.5 * p)
         lrl = np.where(np.abs(c) <= 1, t + p + _mod(b - a - t + p), inf)
     return R * np.minimum.reduce((lsl, rsr, lsr, rsl, rlr, lrl))
+
+
+def dubins_length_scalar(
+    x0: float, y0: float, theta0: float, x1: float, y1: float, theta1: float, R: float
+) -> float:
+    """:func:`dubins_length` of one pair of poses in Python floats (the same formulas, faster
+    for one pair than numpy's per-call overhead; the caller validates ``R``)."""
+    dx, dy = (x1 - x0) / R, (y1 - y0) / R
+    d = math.hypot(dx, dy)
+    th = math.atan2(dy, dx)
+    a = (theta0 - th) % TWO_PI
+    b = (theta1 - th) % TWO_PI
+    sa, ca, sb, cb = math.sin(a), math.cos(a), math.sin(b), math.cos(b)
+    cab = math.cos(a - b)
+    dd = d * d
+    best = math.inf
+    p2 = 2.0 + dd - 2.0 * cab + 2.0 * d * (sa - sb)  # LSL
+    if p2 >= 0:
+        t1 = math.atan2(cb - ca, d + sa - sb)
+        best = min(best, (t1 - a) % TWO_PI + math.sqrt(p2) + (b - t1) % TWO_PI)
+    p2 = 2.0 + dd - 2.0 * cab + 2.0 * d * (sb - sa)  # RSR
+    if p2 >= 0:
+        t1 = math.atan2(ca - cb, d - sa + sb)
+        best = min(best, (a - t1) % TWO_PI + math.sqrt(p2) + (t1 - b) % TWO_PI)
+    p2 = -2.0 + dd + 2.0 * cab + 2.0 * d * (sa + sb)  # LSR
+    if p2 >= 0:
+        p = math.sqrt(p2)
+        t2 = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
+        best = min(best, (t2 - a) % TWO_PI + p + (t2 - b) % TWO_PI)
+    p2 = -2.0 + dd + 2.0 * cab - 2.0 * d * (sa + sb)  # RSL
+    if p2 >= 0:
+        p = math.sqrt(p2)
+        t2 = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
+        best = min(best, (a - t2) % TWO_PI + p + (b - t2) % TWO_PI)
+    c = (6.0 - dd + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0  # RLR
+    if abs(c) <= 1.0:
+        p = (TWO_PI - math.acos(c)) % TWO_PI
+        t = (a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p) % TWO_PI
+        best = min(best, t + p + (a - b - t + p) % TWO_PI)
+    c = (6.0 - dd + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
+    if abs(c) <= 1.0:
+        p = (TWO_PI - math.acos(c)) % TWO_PI
+        t = (-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p) % TWO_PI
+        best = min(best, t + p + (b - a - t + p) % TWO_PI)
+    return R * best

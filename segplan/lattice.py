@@ -51,11 +51,11 @@ import numpy as np
 from scipy import ndimage
 
 from .cost import longd_exact_intrinsic
-from .dubins import dubins_length
+from .dubins import dubins_length_scalar
 from .primitives import heading_angles, primitive_set
 from .union import Union
 
-__all__ = ["ClearanceGrid", "lattice_search", "plan_lattice"]
+__all__ = ["ClearanceGrid", "DistanceField", "lattice_search", "plan_lattice"]
 
 _ANGLES = heading_angles()
 #: Samples of a union screened by the grid: abscissae and positions along the segment.
@@ -170,6 +170,59 @@ def _grid(ws, start, goal, L: float, R: float, cell: float | None) -> ClearanceG
     return grid
 
 
+class DistanceField:
+    """Shortest distances to the goal over the free cells of a coarse grid: a dead-end aware ``h'``.
+
+    A coarse cell (``k x k`` cells of a :class:`ClearanceGrid`) is blocked when all its
+    cells are blocked (wholly inside obstacles), so the free coarse cells contain every
+    position of the rear point A. Distances run between cell centres over the 8-connected
+    free cells (Dijkstra, :func:`scipy.sparse.csgraph.dijkstra`). A path of A of length
+    ``l`` visits a chain of such cells whose octile length is at most
+    ``1.0824 l + 2 sqrt(2) c`` (``c`` the coarse cell), so :meth:`lower` =
+    ``(D - 2 sqrt(2) c) / 1.0824`` never exceeds the length of A's path, nor LONGD. A cell
+    the goal's cell cannot be reached from cannot reach the goal at all (``inf``).
+    """
+
+    def __init__(self, grid: ClearanceGrid, goal, coarse: float):
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import dijkstra
+
+        k = max(1, int(round(coarse / grid.cell)))
+        self.k, self.c = k, k * grid.cell
+        self.x0, self.y0 = grid.x0, grid.y0
+        nx, ny = -(-grid.nx // k), -(-grid.ny // k)
+        padded = np.zeros((nx * k, ny * k), dtype=bool)
+        padded[: grid.nx, : grid.ny] = grid.blocked
+        free = ~padded.reshape(nx, k, ny, k).all(axis=(1, 3))
+        self.nx, self.ny = nx, ny
+        ids = np.arange(nx * ny).reshape(nx, ny)
+        rows, cols, w = [], [], []
+        for di, dj, length in ((1, 0, 1.0), (0, 1, 1.0), (1, 1, math.sqrt(2)), (1, -1, math.sqrt(2))):
+            i0, i1, j0, j1 = max(0, -di), nx - max(0, di), max(0, -dj), ny - max(0, dj)
+            both = free[i0:i1, j0:j1] & free[i0 + di : i1 + di, j0 + dj : j1 + dj]
+            rows.append(ids[i0:i1, j0:j1][both])
+            cols.append(ids[i0 + di : i1 + di, j0 + dj : j1 + dj][both])
+            w.append(np.full(int(both.sum()), length * self.c))
+        r, c_, ww = np.concatenate(rows), np.concatenate(cols), np.concatenate(w)
+        graph = coo_matrix((ww, (r, c_)), shape=(nx * ny, nx * ny)).tocsr()
+        gi, gj = self.cell(goal[0], goal[1])
+        if 0 <= gi < nx and 0 <= gj < ny and free[gi, gj]:
+            dist = dijkstra(graph, directed=False, indices=int(ids[gi, gj]))
+        else:
+            dist = np.zeros(nx * ny)
+        self.lower_table = np.maximum((dist.reshape(nx, ny) - 2.0 * math.sqrt(2.0) * self.c) / 1.0824, 0.0)
+
+    def cell(self, x: float, y: float) -> tuple[int, int]:
+        return int(math.floor((x - self.x0) / self.c)), int(math.floor((y - self.y0) / self.c))
+
+    def lower(self, x: float, y: float) -> float:
+        """A lower bound of the length of A's path from ``(x, y)`` to the goal (``inf``: none)."""
+        i, j = self.cell(x, y)
+        if 0 <= i < self.nx and 0 <= j < self.ny:
+            return float(self.lower_table[i, j])
+        return 0.0
+
+
 def _union_points(u: Union) -> tuple[np.ndarray, float]:
     """World points of a union's swept segment and their covering radius (as the primitives')."""
     x = u.x_end * _U_S
@@ -189,9 +242,11 @@ GOAL = ("goal",)
 class _LatticeSearch:
     """A* over the lattice laid out in the start's frame (module docstring)."""
 
-    def __init__(self, scenario, ws, ex, grid, resolution, weight, analytic_every, goal_radius, banned):
+    def __init__(
+        self, scenario, ws, ex, grid, field, resolution, weight, analytic_every, goal_radius, banned
+    ):
         robot = scenario.robot
-        self.ws, self.ex, self.grid = ws, ex, grid
+        self.ws, self.ex, self.grid, self.field = ws, ex, grid, field
         self.L, self.R = robot.L, robot.min_turning_radius
         self.r = float(resolution)
         self.start, self.goal = scenario.start, scenario.goal
@@ -209,7 +264,12 @@ class _LatticeSearch:
             self.step.append([(p.di, p.dj, p.h1) for p in prims])
             self.cost.append([p.cost for p in prims])
             ends = np.array([[p.di * self.r, p.dj * self.r] for p in prims]) @ rot.T
-            self.end.append((ends, np.array([th + _ANGLES[p.h1] for p in prims])))
+            self.end.append(
+                [
+                    (float(e[0]), float(e[1]), th + float(_ANGLES[p.h1]))
+                    for e, p in zip(ends, prims, strict=True)
+                ]
+            )
 
     def pose(self, key):
         i, j, h = key
@@ -247,8 +307,11 @@ class _LatticeSearch:
         return self.ws.in_bounds(u) and not self.ws.colliding(u, only=self.near(pts))
 
     def h(self, x, y, th):
+        """``weight`` times the larger of two lower bounds of LONGD: Dubins, and the grid distance."""
         g = self.goal
-        return self.weight * dubins_length(x, y, th, g.x, g.y, g.theta, self.R)
+        return self.weight * max(
+            dubins_length_scalar(x, y, th, g.x, g.y, g.theta, self.R), self.field.lower(x, y)
+        )
 
     def try_goal(self, key, P, g):
         """Analytic expansion: the direct union from state ``key`` to the goal."""
@@ -305,8 +368,7 @@ class _LatticeSearch:
             h = key[2]
             pts = self.points[h] + np.array(P[:2])
             free, bad = self.grid.screen(pts, self.delta[h])
-            ends, ths = self.end[h]
-            hs = self.h(P[0] + ends[:, 0], P[1] + ends[:, 1], ths)
+            ends = self.end[h]
             for m, (di, dj, h1) in enumerate(self.step[h]):
                 if bad[m]:
                     continue
@@ -318,11 +380,15 @@ class _LatticeSearch:
                     continue
                 if (key, m) in self.banned:
                     continue
+                ex_, ey_, eth = ends[m]
+                hs = self.h(P[0] + ex_, P[1] + ey_, eth)
+                if hs == math.inf:
+                    continue  # the goal's region cannot be reached from there
                 if not free[m] and not self.certified(self.union(key, m, P), pts[m]):
                     continue
                 self.g[nk] = ng
                 self.parent[nk] = (key, m)
-                heapq.heappush(heap, (ng + float(hs[m]), counter, nk))
+                heapq.heappush(heap, (ng + hs, counter, nk))
                 counter += 1
         self.best = best
         return (reason, expanded)
@@ -498,6 +564,9 @@ def lattice_search(
         raise NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
 
     search = None
+    field = DistanceField(
+        grid, goal, max(grid.cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 2e5) * grid.cell)
+    )
     labels, _ = ndimage.label(~grid.blocked, structure=np.ones((3, 3), dtype=int))
     la, lb = grid.label_of(start.x, start.y, labels), grid.label_of(goal.x, goal.y, labels)
     banned: set = set()
@@ -508,6 +577,7 @@ def lattice_search(
             ws,
             ex,
             grid,
+            field,
             r,
             weight,
             analytic_every,

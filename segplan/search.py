@@ -369,6 +369,8 @@ def plan_scenario(
     _check_choice(heuristic, HEURISTICS, "heuristic")
     _check_choice(cost, COSTS, "cost")
     _check_choice(planner, PLANNERS, "planner")
+    _check_choice(version, ("b", "a"), "version")
+    _check_choice(alpha_method, ("heuristic", "exact"), "alpha_method")
     if refine is None:
         refine = planner == "lattice"
     if not (isinstance(refine, bool) or isinstance(refine, dict)):
