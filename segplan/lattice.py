@@ -50,8 +50,9 @@ import time
 import numpy as np
 from scipy import ndimage
 
+from .collision import ConvexPolygon
 from .cost import longd_exact_intrinsic
-from .dubins import dubins_length_scalar
+from .dubins import dubins_length, dubins_length_scalar
 from .primitives import heading_angles, primitive_set
 from .union import Union
 
@@ -66,130 +67,162 @@ _U_T = np.linspace(0.0, 1.0, 9)
 class ClearanceGrid:
     """Lower bounds of the distance to the enlarged obstacles and walls, on a square grid.
 
+    The grid lies in the lattice's frame (origin at the start's rear point, x-axis along
+    its heading), with cell size ``resolution / k`` and cell corners on multiples of the
+    cell, so that a lattice state's cell and the cells of its primitives' points are
+    integer offsets of each other (:meth:`offsets`, :meth:`base`).
+
     Parameters
     ----------
     convex : sequence of segplan.collision.ConvexPolygon
-        The enlarged obstacles.
-    box : (xmin, ymin, xmax, ymax)
-        Area covered (the free bounds, or a box around everything when there are none).
+        The enlarged obstacles (world coordinates).
+    frame : (x, y, theta)
+        The lattice's origin and x-axis angle in the world.
+    bounds : (xmin, ymin, xmax, ymax) or None
+        The free bounds (world); without them the grid covers the obstacles, start and
+        goal with a margin ``margin`` and points beyond are at least that far from any
+        obstacle.
     cell : float
         Cell size (m).
-    walls : bool
-        Whether the box is a wall (the free bounds): points outside it fail.
+    pad : int
+        Cells added around the area (room for the points of a state's primitives).
+    goal : (x, y, theta)
+        Included in the area without bounds.
+    margin : float
+        See ``bounds``.
 
     Notes
     -----
     A cell is *occupied* when its centre lies within ``h = cell sqrt(2) / 2`` of an
     obstacle (the obstacle's edge lines moved out by ``h``, a superset) or of the walls: the
-    occupied squares cover every obstacle. For a point ``p`` in a free cell ``c``, the
-    distance to any obstacle is at least ``edt(c) cell - 2 h``, with ``edt`` the distance
-    between the centres of ``c`` and of the nearest occupied cell. A cell is *blocked*
-    when its centre lies deeper than ``h`` inside an obstacle: the whole square is inside.
+    occupied squares cover every obstacle and everything outside the walls. For a point
+    ``p`` in a free cell ``c``, the distance to any obstacle or wall is at least
+    ``edt(c) cell - 2 h``, with ``edt`` the distance between the centres of ``c`` and of
+    the nearest occupied cell (:func:`scipy.ndimage.distance_transform_edt`). A cell is
+    *blocked* when its centre lies deeper than ``h`` inside an obstacle or beyond a wall:
+    the whole square is, and the robot's segment cannot touch it.
     """
 
-    def __init__(self, convex, box, cell: float, walls: bool):
-        self.x0, self.y0 = float(box[0]), float(box[1])
-        self.cell = float(cell)
-        self.walls = bool(walls)
-        self.nx = max(1, int(math.ceil((box[2] - box[0]) / cell)))
-        self.ny = max(1, int(math.ceil((box[3] - box[1]) / cell)))
-        h = self.cell * math.sqrt(0.5)
-        cx = self.x0 + (np.arange(self.nx) + 0.5) * cell
-        cy = self.y0 + (np.arange(self.ny) + 0.5) * cell
+    def __init__(self, convex, frame, bounds, cell: float, pad: int, goal, margin: float):
+        sx, sy, th = (float(v) for v in frame)
+        c, s = math.cos(th), math.sin(th)
+        self.frame = (sx, sy, th)
+        self.rot = np.array([[c, -s], [s, c]])  # lattice -> world
+        self.cell = g = float(cell)
+        self.walls = bounds is not None
+        polys = [(p.vertices - (sx, sy)) @ self.rot for p in convex]  # world -> lattice frame
+        if self.walls:
+            xmin, ymin, xmax, ymax = bounds
+            pts = self.to_lattice(np.array([(xmin, ymin), (xmax, ymin), (xmax, ymax), (xmin, ymax)]))
+            self.margin = -1.0
+        else:
+            pts = np.concatenate([self.to_lattice(np.array([frame[:2], goal[:2]]))] + polys)
+            pts = np.concatenate(
+                (pts.min(axis=0, keepdims=True) - margin, pts.max(axis=0, keepdims=True) + margin)
+            )
+            self.margin = float(margin) - 1e-9
+        lo = np.floor(pts.min(axis=0) / g).astype(int) - pad
+        hi = np.ceil(pts.max(axis=0) / g).astype(int) + pad
+        self.i0, self.j0 = int(lo[0]), int(lo[1])
+        self.nx, self.ny = int(hi[0] - lo[0]), int(hi[1] - lo[1])
+        self.pad = int(pad)
+        h = g * math.sqrt(0.5)
+        cx = (self.i0 + np.arange(self.nx) + 0.5) * g
+        cy = (self.j0 + np.arange(self.ny) + 0.5) * g
         occ = np.zeros((self.nx, self.ny), dtype=bool)
         blocked = np.zeros_like(occ)
-        if walls:
-            wx = np.minimum(cx - box[0], box[2] - cx)
-            wy = np.minimum(cy - box[1], box[3] - cy)
-            occ |= np.minimum.outer(wx, wy) <= h
-        for poly in convex:
-            lo = poly.vertices.min(axis=0) - 2 * h
-            hi = poly.vertices.max(axis=0) + 2 * h
-            i0, i1 = self._index(lo[0], self.x0, self.nx), self._index(hi[0], self.x0, self.nx) + 1
-            j0, j1 = self._index(lo[1], self.y0, self.ny), self._index(hi[1], self.y0, self.ny) + 1
+        if self.walls:
+            wx = sx + c * cx[:, None] - s * cy[None, :]
+            wy = sy + s * cx[:, None] + c * cy[None, :]
+            wall = np.minimum(np.minimum(wx - xmin, xmax - wx), np.minimum(wy - ymin, ymax - wy))
+            occ |= wall <= h
+            blocked |= wall < -h
+        for v in polys:
+            poly = ConvexPolygon(v, check=False)
+            a = np.floor((v.min(axis=0) - 2 * h) / g).astype(int) - (self.i0, self.j0)
+            b = np.ceil((v.max(axis=0) + 2 * h) / g).astype(int) - (self.i0, self.j0) + 1
+            i0, j0 = max(int(a[0]), 0), max(int(a[1]), 0)
+            i1, j1 = min(int(b[0]), self.nx), min(int(b[1]), self.ny)
             if i0 >= i1 or j0 >= j1:
                 continue
             px = cx[i0:i1, None, None]
             py = cy[None, j0:j1, None]
-            s = np.max(px * poly.normals[:, 0] + py * poly.normals[:, 1] - poly.offsets, axis=-1)
-            occ[i0:i1, j0:j1] |= s <= h
-            blocked[i0:i1, j0:j1] |= s < -h
-        self.occupied = occ
-        self.blocked = blocked
+            sd = np.max(px * poly.normals[:, 0] + py * poly.normals[:, 1] - poly.offsets, axis=-1)
+            occ[i0:i1, j0:j1] |= sd <= h
+            blocked[i0:i1, j0:j1] |= sd < -h
         edt = ndimage.distance_transform_edt(~occ) if occ.any() else np.full(occ.shape, 1e9)
-        lb = edt * cell - 2.0 * h
-        lb[occ] = -1.0
-        self.lower = lb
-        self.margin = math.inf  # lower bound outside the box (set by the planner without walls)
+        lower = edt * g - 2.0 * h
+        lower[occ] = -1.0
+        self.lower, self.blocked = lower, blocked
+        self.lower_flat, self.blocked_flat = lower.ravel(), blocked.ravel()
 
-    def _index(self, v: float, origin: float, n: int) -> int:
-        return min(max(int(math.floor((v - origin) / self.cell)), 0), n)
+    def to_lattice(self, pts: np.ndarray) -> np.ndarray:
+        """World points ``(..., 2)`` in the lattice frame."""
+        return (np.asarray(pts, dtype=float) - self.frame[:2]) @ self.rot
 
     def cells(self, pts: np.ndarray):
-        """Cell indices of points ``(..., 2)`` and whether they lie inside the grid."""
-        i = np.floor((pts[..., 0] - self.x0) / self.cell).astype(np.int64)
-        j = np.floor((pts[..., 1] - self.y0) / self.cell).astype(np.int64)
+        """Cell indices of lattice-frame points ``(..., 2)`` and whether they lie in the grid."""
+        i = np.floor(pts[..., 0] / self.cell).astype(np.int64) - self.i0
+        j = np.floor(pts[..., 1] / self.cell).astype(np.int64) - self.j0
         inside = (i >= 0) & (i < self.nx) & (j >= 0) & (j < self.ny)
         return np.where(inside, i, 0), np.where(inside, j, 0), inside
 
     def screen(self, pts: np.ndarray, delta) -> tuple[np.ndarray, np.ndarray]:
-        """Certainly free / certainly failing, for sets of points ``(m, n, 2)`` with radii ``delta``.
+        """Certainly free / certainly failing, for lattice-frame point sets ``(m, n, 2)``, radii ``delta``.
 
         Returns two boolean arrays ``(m,)``: all points farther than ``delta`` from every
-        obstacle and wall; some point inside a blocked cell (or outside the walls).
+        obstacle and wall; some point inside a blocked cell (or outside the grid, with walls).
         """
         i, j, inside = self.cells(pts)
-        lb = np.where(inside, self.lower[i, j], -1.0 if self.walls else self.margin)
+        lb = np.where(inside, self.lower[i, j], self.margin)
         bad = inside & self.blocked[i, j]
         if self.walls:
             bad |= ~inside
         return np.min(lb, axis=-1) > delta, np.any(bad, axis=-1)
 
-    def label_of(self, x: float, y: float, labels: np.ndarray) -> int:
-        i, j, inside = self.cells(np.array([x, y]))
-        return int(labels[int(i), int(j)]) if inside else -1
+    def offsets(self, pts: np.ndarray) -> np.ndarray:
+        """Flat-index offsets of lattice-frame points ``(..., 2)`` relative to a lattice point's cell."""
+        i = np.floor(pts[..., 0] / self.cell).astype(np.int64)
+        j = np.floor(pts[..., 1] / self.cell).astype(np.int64)
+        return i * self.ny + j
 
+    def base(self, i: int, j: int) -> int | None:
+        """Flat index of the cell of the lattice point ``(i, j)`` (in grid cells), or None
+        if it lies within ``pad`` of the grid's edge."""
+        a, b = i - self.i0, j - self.j0
+        if self.pad <= a < self.nx - self.pad and self.pad <= b < self.ny - self.pad:
+            return a * self.ny + b
+        return None
 
-def _grid(ws, start, goal, L: float, R: float, cell: float | None) -> ClearanceGrid:
-    """The clearance grid of a workspace (the free bounds, or a box around everything)."""
-    if ws.bounds is not None:
-        box, walls = ws.bounds, True
-        margin = math.inf
-    else:
-        pts = [np.array([start[:2], goal[:2]])] + list(ws.polygons)
-        allp = np.concatenate(pts)
-        margin = 4.0 * L + 4.0 * R
-        box = (*(allp.min(axis=0) - margin), *(allp.max(axis=0) + margin))
-        walls = False
-    if cell is None:
-        area = (box[2] - box[0]) * (box[3] - box[1])
-        cell = max(L / 20.0, math.sqrt(area / 4.0e5))
-    grid = ClearanceGrid(ws.convex, box, cell, walls)
-    if not walls:
-        grid.margin = margin - 1e-9
-    return grid
+    def component(self, pts: np.ndarray) -> np.ndarray:
+        """Labels of the 8-connected components of unblocked cells at lattice-frame points (-1 outside)."""
+        if not hasattr(self, "_labels"):
+            self._labels, _ = ndimage.label(~self.blocked, structure=np.ones((3, 3), dtype=int))
+        i, j, inside = self.cells(pts)
+        return np.where(inside, self._labels[i, j], -1)
 
 
 class DistanceField:
     """Shortest distances to the goal over the free cells of a coarse grid: a dead-end aware ``h'``.
 
     A coarse cell (``k x k`` cells of a :class:`ClearanceGrid`) is blocked when all its
-    cells are blocked (wholly inside obstacles), so the free coarse cells contain every
-    position of the rear point A. Distances run between cell centres over the 8-connected
-    free cells (Dijkstra, :func:`scipy.sparse.csgraph.dijkstra`). A path of A of length
-    ``l`` visits a chain of such cells whose octile length is at most
+    cells are blocked (wholly inside obstacles or beyond the walls), so the free coarse
+    cells contain every position of the rear point A. Distances run between cell centres
+    over the 8-connected free cells (Dijkstra, :func:`scipy.sparse.csgraph.dijkstra`). A
+    path of A of length ``l`` visits a chain of such cells whose octile length is at most
     ``1.0824 l + 2 sqrt(2) c`` (``c`` the coarse cell), so :meth:`lower` =
-    ``(D - 2 sqrt(2) c) / 1.0824`` never exceeds the length of A's path, nor LONGD. A cell
-    the goal's cell cannot be reached from cannot reach the goal at all (``inf``).
+    ``(D - 2 sqrt(2) c) / 1.0824`` never exceeds the length of A's path, nor LONGD. From a
+    cell not joined to the goal's cell the goal cannot be reached at all (``inf``).
+    Lattice-frame coordinates.
     """
 
-    def __init__(self, grid: ClearanceGrid, goal, coarse: float):
+    def __init__(self, grid: ClearanceGrid, goal_xy, coarse: float):
         from scipy.sparse import coo_matrix
         from scipy.sparse.csgraph import dijkstra
 
         k = max(1, int(round(coarse / grid.cell)))
-        self.k, self.c = k, k * grid.cell
-        self.x0, self.y0 = grid.x0, grid.y0
+        self.c = k * grid.cell
+        self.x0, self.y0 = grid.i0 * grid.cell, grid.j0 * grid.cell
         nx, ny = -(-grid.nx // k), -(-grid.ny // k)
         padded = np.zeros((nx * k, ny * k), dtype=bool)
         padded[: grid.nx, : grid.ny] = grid.blocked
@@ -205,12 +238,12 @@ class DistanceField:
             w.append(np.full(int(both.sum()), length * self.c))
         r, c_, ww = np.concatenate(rows), np.concatenate(cols), np.concatenate(w)
         graph = coo_matrix((ww, (r, c_)), shape=(nx * ny, nx * ny)).tocsr()
-        gi, gj = self.cell(goal[0], goal[1])
+        gi, gj = self.cell(goal_xy[0], goal_xy[1])
         if 0 <= gi < nx and 0 <= gj < ny and free[gi, gj]:
             dist = dijkstra(graph, directed=False, indices=int(ids[gi, gj]))
         else:
             dist = np.zeros(nx * ny)
-        self.lower_table = np.maximum((dist.reshape(nx, ny) - 2.0 * math.sqrt(2.0) * self.c) / 1.0824, 0.0)
+        self.table = np.maximum((dist.reshape(nx, ny) - 2.0 * math.sqrt(2.0) * self.c) / 1.0824, 0.0)
 
     def cell(self, x: float, y: float) -> tuple[int, int]:
         return int(math.floor((x - self.x0) / self.c)), int(math.floor((y - self.y0) / self.c))
@@ -219,7 +252,7 @@ class DistanceField:
         """A lower bound of the length of A's path from ``(x, y)`` to the goal (``inf``: none)."""
         i, j = self.cell(x, y)
         if 0 <= i < self.nx and 0 <= j < self.ny:
-            return float(self.lower_table[i, j])
+            return float(self.table[i, j])
         return 0.0
 
 
@@ -248,30 +281,30 @@ class _LatticeSearch:
         robot = scenario.robot
         self.ws, self.ex, self.grid, self.field = ws, ex, grid, field
         self.L, self.R = robot.L, robot.min_turning_radius
-        self.r = float(resolution)
+        self.r = r = float(resolution)
+        self.q = int(round(r / grid.cell))  # grid cells per lattice cell (exact by construction)
         self.start, self.goal = scenario.start, scenario.goal
         self.weight, self.every, self.goal_radius = weight, analytic_every, goal_radius
         self.banned = banned
-        ps = primitive_set(robot.L, robot.max_steer, self.r)
+        self.approach_after, self.approach_tries, self.approach_limit = 32, 2, 60
+        self.approach_budget = math.pi * self.R + 2.0 * self.L
+        ps = primitive_set(robot.L, robot.max_steer, r)
         self.prims = ps.by_heading
         th = self.start.theta
         self.c, self.s = math.cos(th), math.sin(th)
-        rot = np.array([[self.c, -self.s], [self.s, self.c]])
-        self.points, self.delta, self.step, self.cost, self.end = [], [], [], [], []
+        gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
+        self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
+        self.offsets, self.delta, self.step, self.cost, self.points = [], [], [], [], []
         for prims in ps.by_heading:
-            self.points.append(np.stack([p.points @ rot.T for p in prims]))
-            self.delta.append(np.array([p.delta for p in prims]))
+            pts = np.stack([p.points for p in prims])
+            self.points.append(pts)
+            self.offsets.append(grid.offsets(pts))
+            self.delta.append(np.array([p.delta for p in prims]) + 1e-9)
             self.step.append([(p.di, p.dj, p.h1) for p in prims])
             self.cost.append([p.cost for p in prims])
-            ends = np.array([[p.di * self.r, p.dj * self.r] for p in prims]) @ rot.T
-            self.end.append(
-                [
-                    (float(e[0]), float(e[1]), th + float(_ANGLES[p.h1]))
-                    for e, p in zip(ends, prims, strict=True)
-                ]
-            )
 
     def pose(self, key):
+        """World pose of a lattice state."""
         i, j, h = key
         x, y = i * self.r, j * self.r
         sx, sy, th = self.start
@@ -292,29 +325,53 @@ class _LatticeSearch:
         psi = math.atan2(P1.y - P0.y, P1.x - P0.x)
         return Union.from_intrinsic(P0, P1, p.alpha, self.L, p.d, psi, p.phi0, p.phi1)
 
-    def near(self, pts: np.ndarray) -> list[int]:
-        """Obstacles whose bounding box meets the bounding box of ``pts``."""
+    def near(self, pts: np.ndarray, margin: float) -> list[int]:
+        """Obstacles whose bounding box meets the bounding box of world points ``pts`` grown by ``margin``."""
         bb = self.ws._bbox
         if not len(bb):
             return []
-        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        lo, hi = pts.min(axis=0) - margin, pts.max(axis=0) + margin
         hit = (bb[:, 0] <= hi[0]) & (bb[:, 2] >= lo[0]) & (bb[:, 1] <= hi[1]) & (bb[:, 3] >= lo[1])
         return np.flatnonzero(hit).tolist()
 
-    def certified(self, u: Union, pts: np.ndarray) -> bool:
-        """The package's certified test of a union (walls, then the obstacles near it)."""
+    def certified(self, u: Union, pts: np.ndarray, delta: float | None = None) -> bool:
+        """Is the union free? The package's certified test (walls, then the obstacles near it).
+
+        With ``delta`` (every point of the swept segment lies within ``delta`` of the world
+        points ``pts``), a finer screen first: the signed distances of the points to the
+        edge lines of the obstacles near them (their largest, a lower bound of the
+        distance to a convex polygon) and to the walls. All above ``delta``: free; a point
+        strictly inside an obstacle or beyond a wall: not free. Otherwise the certified test.
+        """
+        near = self.near(pts, self.L if delta is None else 1.01 * delta + 1e-9)
+        if delta is not None:
+            lb = math.inf
+            for k in near:
+                poly = self.ws.convex[k]
+                sd = np.max(pts @ poly.normals.T - poly.offsets, axis=1)
+                if sd.min() < 0.0:
+                    return False
+                lb = min(lb, float(sd.min()))
+            b = self.ws.bounds
+            if b is not None:
+                w = min(float(pts[:, 0].min()) - b[0], b[2] - float(pts[:, 0].max()))
+                w = min(w, float(pts[:, 1].min()) - b[1], b[3] - float(pts[:, 1].max()))
+                if w <= 0.0:
+                    return False
+                lb = min(lb, w)
+            if lb > delta:
+                return True
         self.certified_calls += 1
-        return self.ws.in_bounds(u) and not self.ws.colliding(u, only=self.near(pts))
+        return self.ws.in_bounds(u) and not self.ws.colliding(u, only=near)
 
     def h(self, x, y, th):
-        """``weight`` times the larger of two lower bounds of LONGD: Dubins, and the grid distance."""
-        g = self.goal
-        return self.weight * max(
-            dubins_length_scalar(x, y, th, g.x, g.y, g.theta, self.R), self.field.lower(x, y)
-        )
+        """``weight`` times the larger of two lower bounds of LONGD: Dubins, and the grid
+        distance (lattice frame)."""
+        gx, gy, gth = self.goal_l
+        return self.weight * max(dubins_length_scalar(x, y, th, gx, gy, gth, self.R), self.field.lower(x, y))
 
     def try_goal(self, key, P, g):
-        """Analytic expansion: the direct union from state ``key`` to the goal."""
+        """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the goal."""
         from .pose import Pose
 
         u = self.ex.union(Pose(*P), self.goal)
@@ -324,11 +381,113 @@ class _LatticeSearch:
         if not g + c < self.goal_g:
             return
         pts, dl = _union_points(u)
-        free, bad = self.grid.screen(pts[None], dl)
-        if bad[0] or not (free[0] or self.certified(u, pts)):
+        free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
+        if bad[0] or not (free[0] or self.certified(u, pts, dl)):
             return
-        self.goal_g, self.goal_parent = g + c, (key, u)
+        self.goal_g, self.goal_parent = g + c, (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
+
+    # -- the goal's approach tree ----------------------------------------------------------
+    def goal_pose(self, key):
+        """World pose of a state of the lattice laid out in the goal's frame."""
+        i, j, h = key
+        x, y = i * self.r, j * self.r
+        c, s = math.cos(self.goal.theta), math.sin(self.goal.theta)
+        return (
+            self.goal.x + c * x - s * y,
+            self.goal.y + s * x + c * y,
+            math.remainder(self.goal.theta + _ANGLES[h], 2 * math.pi),
+        )
+
+    def build_approaches(self, budget: float, limit: int):
+        """States from which a chain of free primitives ends exactly at the goal (backward Dijkstra).
+
+        The goal is the state ``(0, 0, 0)`` of a lattice laid out in its own frame; the
+        predecessors of a state are reached by the primitives backwards. Every edge is
+        screened and, where unsure, checked by the certified test. Keeps the states within
+        ``budget`` (LONGD to the goal), at most ``limit`` of them.
+        """
+        from .pose import Pose
+
+        into = [[] for _ in range(len(self.prims))]  # heading -> [(h0, m)] of primitives ending at it
+        for h0, prims in enumerate(self.prims):
+            for m, p in enumerate(prims):
+                into[p.h1].append((h0, m))
+        goal_key = (0, 0, 0)
+        cost = {goal_key: 0.0}
+        nxt = {goal_key: None}  # key -> (next key, union to it)
+        done = set()
+        heap = [(0.0, goal_key)]
+        out = []
+        while heap and len(out) < limit:
+            c, key = heapq.heappop(heap)
+            if key in done:
+                continue
+            done.add(key)
+            if key != goal_key:
+                out.append(key)
+            i, j, h = key
+            P1 = Pose(*self.goal_pose(key))
+            for h0, m in into[h]:
+                p = self.prims[h0][m]
+                prev = (i - p.di, j - p.dj, h0)
+                nc = c + p.cost
+                if prev in done or nc > budget or not nc < cost.get(prev, math.inf):
+                    continue
+                P0 = Pose(*self.goal_pose(prev))
+                psi = math.atan2(P1.y - P0.y, P1.x - P0.x)
+                u = Union.from_intrinsic(P0, P1, p.alpha, self.L, p.d, psi, p.phi0, p.phi1)
+                pts, dl = _union_points(u)
+                free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
+                if bad[0] or not (free[0] or self.certified(u, pts, dl)):
+                    continue
+                cost[prev], nxt[prev] = nc, (key, u)
+                heapq.heappush(heap, (nc, prev))
+        self.approach_keys = out
+        self.approach_cost = np.array([cost[k] for k in out])
+        self.approach_next = nxt
+        poses = np.array([self.goal_pose(k) for k in out]).reshape(-1, 3)
+        self.approach_poses = poses
+        self.approach_lattice = (
+            np.column_stack((self.grid.to_lattice(poses[:, :2]), poses[:, 2] - self.start.theta))
+            if len(out)
+            else np.zeros((0, 3))
+        )
+
+    def approach_chain(self, key) -> list:
+        """Unions from an approach state to the goal."""
+        out = []
+        while self.approach_next[key] is not None:
+            key, u = self.approach_next[key]
+            out.append(u)
+        return out
+
+    def try_approaches(self, key, P, g, x, y, th, tries: int):
+        """Unions from state ``key`` to the ``tries`` most promising approach states."""
+        from .pose import Pose
+
+        if not len(self.approach_keys):
+            return
+        a = self.approach_lattice
+        est = g + self.approach_cost + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
+        for k in np.argsort(est, kind="stable")[:tries]:
+            if not est[k] < self.goal_g:
+                break
+            Q = Pose(*self.approach_poses[k].tolist())
+            u = self.ex.union(Pose(*P), Q)
+            if u is None or not self.ws.curvature_ok(u):
+                continue
+            c = self.ex.link_cost(u)
+            total = g + c + float(self.approach_cost[k])
+            if not total < self.goal_g:
+                continue
+            pts, dl = _union_points(u)
+            free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
+            if bad[0] or not (free[0] or self.certified(u, pts, dl)):
+                continue
+            self.goal_g = total
+            self.goal_parent = (key, [u] + self.approach_chain(self.approach_keys[k]))
+            heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
     def run(self, max_expansions: int, deadline: float):
         start = (0, 0, 0)
@@ -336,14 +495,16 @@ class _LatticeSearch:
         self.parent = {start: None}
         self.goal_g, self.goal_parent = math.inf, None
         self.certified_calls = 0
-        sx, sy, sth = self.start
-        self.heap = [(float(self.h(sx, sy, sth)), 0, start)]
+        self.approach_keys = None
+        self.heap = [(self.h(0.0, 0.0, 0.0), 0, start)]
         closed = set()
         counter = 1
         expanded = 0
-        best, best_d = start, math.hypot(self.goal.x - sx, self.goal.y - sy)
+        gx, gy, _ = self.goal_l
+        self.best, best_d = start, math.hypot(gx, gy)
         reason = "exhausted"
-        heap = self.heap
+        heap, r, q, grid = self.heap, self.r, self.q, self.grid
+        lower, blocked = grid.lower_flat, grid.blocked_flat
         while heap:
             if expanded >= max_expansions:
                 reason = "expansions"
@@ -351,28 +512,38 @@ class _LatticeSearch:
             if expanded % 64 == 0 and time.perf_counter() > deadline:
                 reason = "time"
                 break
-            f, _, key = heapq.heappop(heap)
+            _, _, key = heapq.heappop(heap)
             if key == GOAL:
                 return ("found", expanded)
             if key in closed:
                 continue
             closed.add(key)
             expanded += 1
+            i, j, h = key
             g = self.g[key]
-            P = self.pose(key)
-            hd = math.hypot(self.goal.x - P[0], self.goal.y - P[1])
+            x, y = i * r, j * r
+            hd = math.hypot(gx - x, gy - y)
             if hd < best_d:
-                best, best_d = key, hd
+                self.best, best_d = key, hd
+            P = None
             if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
+                P = self.pose(key)
                 self.try_goal(key, P, g)
-            h = key[2]
-            pts = self.points[h] + np.array(P[:2])
-            free, bad = self.grid.screen(pts, self.delta[h])
-            ends = self.end[h]
+            if self.approach_keys is None and expanded >= self.approach_after and self.goal_parent is None:
+                self.build_approaches(self.approach_budget, self.approach_limit)
+            if self.approach_keys and hd <= self.goal_radius:
+                P = P or self.pose(key)
+                self.try_approaches(key, P, g, x, y, _ANGLES[h], self.approach_tries)
+            b = grid.base(i * q, j * q)
+            if b is None:
+                continue  # at the edge of the grid (no walls): the lattice ends there
+            idx = self.offsets[h] + b
+            free = lower[idx].min(axis=1) > self.delta[h]
+            bad = blocked[idx].any(axis=1)
             for m, (di, dj, h1) in enumerate(self.step[h]):
                 if bad[m]:
                     continue
-                nk = (key[0] + di, key[1] + dj, h1)
+                nk = (i + di, j + dj, h1)
                 if nk in closed:
                     continue
                 ng = g + self.cost[h][m]
@@ -380,17 +551,18 @@ class _LatticeSearch:
                     continue
                 if (key, m) in self.banned:
                     continue
-                ex_, ey_, eth = ends[m]
-                hs = self.h(P[0] + ex_, P[1] + ey_, eth)
+                hs = self.h((i + di) * r, (j + dj) * r, _ANGLES[h1])
                 if hs == math.inf:
                     continue  # the goal's region cannot be reached from there
-                if not free[m] and not self.certified(self.union(key, m, P), pts[m]):
-                    continue
+                if not free[m]:
+                    P = P or self.pose(key)
+                    world = (self.points[h][m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
+                    if not self.certified(self.union(key, m, P), world, self.delta[h][m]):
+                        continue
                 self.g[nk] = ng
                 self.parent[nk] = (key, m)
                 heapq.heappush(heap, (ng + hs, counter, nk))
                 counter += 1
-        self.best = best
         return (reason, expanded)
 
     def chain(self, key):
@@ -403,7 +575,7 @@ class _LatticeSearch:
         return out
 
     def make_plan(self, edges, final, expanded, t0):
-        """A :class:`segplan.search.Plan` of lattice edges and an optional final union."""
+        """A :class:`segplan.search.Plan` of lattice edges and the final unions to the goal (a list)."""
         from .pose import Pose
         from .search import Plan
 
@@ -416,13 +588,11 @@ class _LatticeSearch:
             nodes.append(u.p1)
             cost += self.cost[key[2]][m]
         kinds = ["start"] + ["lattice"] * len(edges)
-        if final is not None:
-            unions.append(final)
-            nodes.append(final.p1)
-            cost += float(
-                longd_exact_intrinsic(final.d, final.phi0, final.phi1, final.alpha, final.L, rtol=1e-8)
-            )
-            kinds.append("goal")
+        for k, u in enumerate(final or []):
+            unions.append(u)
+            nodes.append(u.p1)
+            cost += float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8))
+            kinds.append("goal" if k == len(final) - 1 else "approach")
         st = self.ws.stats
         return Plan(
             nodes=tuple(nodes),
@@ -557,18 +727,30 @@ def lattice_search(
     deadline = t0 + time_limit
     ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     ex = Expander(ws)
-    grid = _grid(ws, scenario.start, scenario.goal, L, R, cell)
     start, goal = scenario.start, scenario.goal
+    reach = max(
+        float(np.abs(p.points).max())
+        for t in tries
+        for prims in primitive_set(L, robot.max_steer, t).by_heading
+        for p in prims
+    )
+    fine = tries[-1]
+    if cell is None:
+        fb = scenario.free_bounds
+        span = (fb[2] - fb[0]) + (fb[3] - fb[1]) if fb is not None else 40.0 * L
+        cell = 0.5 * fine if (span / (0.5 * fine)) ** 2 <= 4.0e6 else fine
+    elif abs(round(fine / cell) * cell - fine) > 1e-9 * fine:
+        raise ValueError(f"cell must divide the finest resolution {fine:g} m, got {cell!r}")
+    pad = int(math.ceil(reach / cell)) + 2
+    grid = ClearanceGrid(ws.convex, tuple(start), scenario.free_bounds, cell, pad, goal, 4.0 * L + 4.0 * R)
+    gl = grid.to_lattice(np.array([goal[:2]]))[0]
+    field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 2e5) * cell))
 
     def fail(reason, message, expanded, generated, best):
         raise NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
 
     search = None
-    field = DistanceField(
-        grid, goal, max(grid.cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 2e5) * grid.cell)
-    )
-    labels, _ = ndimage.label(~grid.blocked, structure=np.ones((3, 3), dtype=int))
-    la, lb = grid.label_of(start.x, start.y, labels), grid.label_of(goal.x, goal.y, labels)
+    la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
     banned: set = set()
     expanded_total = 0
     for k, r in enumerate(tries):
@@ -609,7 +791,7 @@ def lattice_search(
             for i in bad:
                 if i < len(edges):
                     banned.add(edges[i])
-            if len(plan.unions) - 1 in bad:
+            if any(i >= len(edges) for i in bad):
                 break  # cannot ban a final union; stop this resolution
             expanded_total += expanded
         expanded_total += expanded
