@@ -114,7 +114,15 @@ def test_plan_through_a_gap_with_half_width():
         [[4.0, -5.0], [6.0, -5.0], [6.0, -0.9], [4.0, -0.9]],
         [[4.0, 0.9], [6.0, 0.9], [6.0, 5.0], [4.0, 5.0]],
     ]
-    result = plan((0.0, 0.0, 0.0), (11.0, 0.0, 0.0), obstacles, 1.0, bounds=(-1, -5, 13, 5), half_width=0.3, planner="paper")
+    result = plan(
+        (0.0, 0.0, 0.0),
+        (11.0, 0.0, 0.0),
+        obstacles,
+        1.0,
+        bounds=(-1, -5, 13, 5),
+        half_width=0.3,
+        planner="paper",
+    )
     sc = make_scenario(Robot(1.0, 0.3), (0.0, 0.0, 0.0), (11.0, 0.0, 0.0), obstacles, (-1, -5, 13, 5))
     check_plan(result, sc)
 
@@ -135,7 +143,15 @@ def test_enclosed_goal_raises_no_path_error():
         [[14.0, -3.0], [15.0, -3.0], [15.0, 3.0], [14.0, 3.0]],
     ]
     with pytest.raises(NoPathError) as info:
-        plan((0.0, 0.0, 0.0), (10.5, 0.0, 0.0), ring, 1.0, bounds=(-2, -6, 18, 6), max_expansions=300, planner="paper")
+        plan(
+            (0.0, 0.0, 0.0),
+            (10.5, 0.0, 0.0),
+            ring,
+            1.0,
+            bounds=(-2, -6, 18, 6),
+            max_expansions=300,
+            planner="paper",
+        )
     exc = info.value
     assert exc.reason in ("exhausted", "expansions")
     assert exc.expanded >= 1 and exc.generated >= 1 and exc.seconds >= 0
@@ -202,7 +218,12 @@ def test_characteristic_dimension():
 def test_heuristic_c_limits():
     """(c) with d_s = 0 weighs (a) fully; with a huge d_s it is the distance (b)."""
     sc = segplan.load_scenario(SCENARIOS / "fig5_example1.json")
-    assert plan_scenario(sc, "c", ds=0.0, planner="paper").nodes == plan_scenario(sc, "a", planner="paper").nodes
-    assert plan_scenario(sc, "c", ds=1e12, planner="paper").nodes == plan_scenario(sc, "b", planner="paper").nodes
+    assert (
+        plan_scenario(sc, "c", ds=0.0, planner="paper").nodes == plan_scenario(sc, "a", planner="paper").nodes
+    )
+    assert (
+        plan_scenario(sc, "c", ds=1e12, planner="paper").nodes
+        == plan_scenario(sc, "b", planner="paper").nodes
+    )
     with pytest.raises(ValueError, match="ds"):
         plan_scenario(sc, "c", ds=-1.0, planner="paper")
