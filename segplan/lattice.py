@@ -63,9 +63,10 @@ import time
 
 import numpy as np
 
+from .approach import GOAL, GoalApproaches
 from .clearance import ClearanceGrid, DistanceField, union_free_near, union_points
 from .cost import longd_exact_intrinsic
-from .dubins import dubins_length, dubins_length_scalar
+from .dubins import dubins_length_scalar
 from .primitives import heading_angles, primitive_set
 from .union import Union
 
@@ -74,10 +75,7 @@ __all__ = ["lattice_search", "plan_lattice"]
 _ANGLES = heading_angles()
 
 
-GOAL = ("goal",)
-
-
-class _LatticeSearch:
+class _LatticeSearch(GoalApproaches):
     """A* over the lattice laid out in the start's frame (module docstring)."""
 
     def __init__(
@@ -160,108 +158,6 @@ class _LatticeSearch:
             return
         self.goal_g, self.goal_parent = g + c, (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
-
-    # -- the goal's approach tree ----------------------------------------------------------
-    def goal_pose(self, key):
-        """World pose of a state of the lattice laid out in the goal's frame."""
-        i, j, h = key
-        x, y = i * self.r, j * self.r
-        c, s = math.cos(self.goal.theta), math.sin(self.goal.theta)
-        return (
-            self.goal.x + c * x - s * y,
-            self.goal.y + s * x + c * y,
-            self.goal.theta + float(_ANGLES[h]),
-        )
-
-    def build_approaches(self, budget: float, limit: int):
-        """States from which a chain of free primitives ends exactly at the goal (backward Dijkstra).
-
-        The goal is the state ``(0, 0, 0)`` of a lattice laid out in its own frame; the
-        predecessors of a state are reached by the primitives backwards. Every edge is
-        screened and, where unsure, checked by the certified test. Keeps the states within
-        ``budget`` (LONGD to the goal), at most ``limit`` of them.
-        """
-        from .pose import Pose
-
-        into = [[] for _ in range(len(self.prims))]  # heading -> [(h0, m)] of primitives ending at it
-        for h0, prims in enumerate(self.prims):
-            for m, p in enumerate(prims):
-                into[p.h1].append((h0, m))
-        goal_key = (0, 0, 0)
-        cost = {goal_key: 0.0}
-        nxt = {goal_key: None}  # key -> (next key, union to it)
-        done = set()
-        heap = [(0.0, goal_key)]
-        out = []
-        while heap and len(out) < limit:
-            c, key = heapq.heappop(heap)
-            if key in done:
-                continue
-            done.add(key)
-            if key != goal_key:
-                out.append(key)
-            i, j, h = key
-            P1 = Pose(*self.goal_pose(key))
-            for h0, m in into[h]:
-                p = self.prims[h0][m]
-                prev = (i - p.di, j - p.dj, h0)
-                nc = c + p.cost
-                if prev in done or nc > budget or not nc < cost.get(prev, math.inf):
-                    continue
-                P0 = Pose(*self.goal_pose(prev))
-                psi = math.atan2(P1.y - P0.y, P1.x - P0.x)
-                u = Union.from_intrinsic(P0, P1, p.alpha, self.L, p.d, psi, p.phi0, p.phi1)
-                pts, dl = union_points(u)
-                free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
-                if bad[0] or not (free[0] or self.certified(u, pts, dl)):
-                    continue
-                cost[prev], nxt[prev] = nc, (key, u)
-                heapq.heappush(heap, (nc, prev))
-        self.approach_keys = out
-        self.approach_cost = np.array([cost[k] for k in out])
-        self.approach_next = nxt
-        poses = np.array([self.goal_pose(k) for k in out]).reshape(-1, 3)
-        self.approach_poses = poses
-        self.approach_lattice = (
-            np.column_stack((self.grid.to_lattice(poses[:, :2]), poses[:, 2] - self.start.theta))
-            if len(out)
-            else np.zeros((0, 3))
-        )
-
-    def approach_chain(self, key) -> list:
-        """Unions from an approach state to the goal."""
-        out = []
-        while self.approach_next[key] is not None:
-            key, u = self.approach_next[key]
-            out.append(u)
-        return out
-
-    def try_approaches(self, key, P, g, x, y, th, tries: int):
-        """Unions from state ``key`` to the ``tries`` most promising approach states."""
-        from .pose import Pose
-
-        if not len(self.approach_keys):
-            return
-        a = self.approach_lattice
-        est = g + self.approach_cost + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
-        for k in np.argsort(est, kind="stable")[:tries]:
-            if not est[k] < self.goal_g:
-                break
-            Q = Pose(*self.approach_poses[k].tolist())
-            u = self.ex.union(Pose(*P), Q)
-            if u is None or not self.ws.curvature_ok(u):
-                continue
-            c = self.ex.link_cost(u)
-            total = g + c + float(self.approach_cost[k])
-            if not total < self.goal_g:
-                continue
-            pts, dl = union_points(u)
-            free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
-            if bad[0] or not (free[0] or self.certified(u, pts, dl)):
-                continue
-            self.goal_g = total
-            self.goal_parent = (key, [u] + self.approach_chain(self.approach_keys[k]))
-            heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
     def run(self, max_expansions: int, deadline: float):
         start = (0, 0, 0)
@@ -386,6 +282,30 @@ class _LatticeSearch:
         )
 
 
+def _direct_plan(ws, start, u, t0):
+    """The plan of one free union (or none: the start is the goal)."""
+    from .search import Plan
+
+    unions = () if u is None else (u,)
+    cost = sum(float(longd_exact_intrinsic(v.d, v.phi0, v.phi1, v.alpha, v.L, rtol=1e-8)) for v in unions)
+    return Plan(
+        nodes=(start,) + tuple(v.p1 for v in unions),
+        unions=unions,
+        cost=cost,
+        search_cost=cost,
+        expanded=0 if u is None else 1,
+        generated=1 + len(unions),
+        seconds=time.perf_counter() - t0,
+        heuristic="dubins",
+        cost_kind="longd",
+        version="lattice",
+        collision_checks=ws.stats.collision_checks,
+        exact_checks=ws.stats.exact_checks,
+        iterations=(),
+        kinds=("start",) + ("goal",) * len(unions),
+    )
+
+
 def _check(value, name, lo, integer=False, allow_none=False):
     if value is None and allow_none:
         return None
@@ -502,6 +422,10 @@ def lattice_search(
     ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     ex = Expander(ws)
     start, goal = scenario.start, scenario.goal
+    # the paper's direct union first: where it is free, it is the plan (no grid to build)
+    direct = None if start == goal else ex.union(start, goal)
+    if start == goal or (direct is not None and ws.union_free(direct)):
+        return _direct_plan(ws, start, direct, t0), ex
     reach = max(
         float(np.abs(p.points).max())
         for t in tries

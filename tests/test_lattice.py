@@ -161,10 +161,21 @@ def test_enclosed_goal_fails_fast_with_the_explored_tree():
 
 
 def test_limits_stay_arguments():
-    sc = random_floor(2)
+    sc = segplan.load_scenario(SCENARIOS / "turn_around.json")  # no direct union: a search
     with pytest.raises(NoPathError) as info:
-        plan_scenario(sc, max_expansions=1, lattice={"analytic_every": 1000})
-    assert info.value.reason == "expansions"
+        plan_scenario(sc, max_expansions=1)
+    assert info.value.reason == "expansions" and info.value.expanded == 1
+    with pytest.raises(NoPathError) as info:
+        plan_scenario(sc, time_limit=1e-6)
+    assert info.value.reason == "time"
+
+
+def test_direct_union_when_free():
+    sc = make_scenario(Robot(1.0, 0.0, 45 * DEG), (0.0, 0.0, 0.0), (6.0, 1.0, 0.2), [], (-2, -3, 9, 4))
+    plan = plan_scenario(sc, refine=False)
+    assert len(plan.unions) == 1 and plan.kinds == ("start", "goal")
+    same = plan_scenario(sc, planner="paper")
+    assert plan.cost == pytest.approx(same.cost, rel=1e-9)
 
 
 def test_clearance_is_honoured_and_measured():
