@@ -433,7 +433,7 @@ def warm_up() -> float:
     )
     t0 = time.perf_counter()
     for h in HEURISTICS:
-        segplan.plan_scenario(sc, heuristic=h)
+        segplan.plan_scenario(sc, heuristic=h, planner="paper")
     return time.perf_counter() - t0
 
 
@@ -468,9 +468,11 @@ def solve_segplan(
     }
     times, plan = [], None
     try:
-        segplan.plan_scenario(sc, heuristic=heuristic, refine=refine)  # untimed: per-scenario caches (d_s)
+        segplan.plan_scenario(
+            sc, heuristic=heuristic, refine=refine, planner="paper"
+        )  # untimed: per-scenario caches (d_s)
         for _ in range(repeats):
-            plan = segplan.plan_scenario(sc, heuristic=heuristic, refine=refine)
+            plan = segplan.plan_scenario(sc, heuristic=heuristic, refine=refine, planner="paper")
             times.append(plan.seconds)
     except segplan.NoPathError as exc:
         times.append(exc.seconds)
