@@ -64,9 +64,11 @@ import time
 import numpy as np
 
 from .approach import GOAL, GoalApproaches
+from .calibration import calibration
 from .clearance import ClearanceGrid, DistanceField, union_free_near, union_points
 from .cost import longd_exact_intrinsic
 from .dubins import dubins_length_scalar
+from .frame import heuristic_coefficients
 from .primitives import heading_angles, primitive_set
 from .union import Union
 
@@ -415,8 +417,12 @@ def lattice_search(
         raise ValueError(f"retry must be True or False, got {retry!r}")
     res = resolution or 0.25 * L
     tries = [res, 0.5 * res] if retry else [res]
-    for r in tries:  # off-line work, outside the planning time: once per robot and resolution
+    # off-line work, outside the planning time (as the paper's search): the primitives (once
+    # per robot and resolution), the fitted coefficients of the heuristic frame and of [2]
+    for r in tries:
         primitive_set(L, robot.max_steer, r)
+    heuristic_coefficients()
+    calibration()
     t0 = time.perf_counter() if t0 is None else t0
     deadline = t0 + time_limit
     ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
