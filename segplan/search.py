@@ -1,5 +1,9 @@
 """The A*-type search on the graph built on-line (section "Results. Graph-search").
 
+:func:`plan` and :func:`plan_scenario` run, by default, the resolution-complete lattice
+planner (:mod:`segplan.lattice`, beyond the paper) and refine its plan; the paper's search
+described below is ``planner="paper"``, exactly as before.
+
 "The evaluation function is defined as the estimation of the cost of an optimal path
 conditioned to passing by a given node ... f = g + h'", with ``g`` the cost (LONGD, the
 front-wheel path length, formula [1]/[2]) of the path found so far and ``h'`` an
