@@ -755,7 +755,7 @@ def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
 def planner_links(scenarios, **options):
     """Every LONGD evaluation the planner makes while solving ``scenarios``, recorded.
 
-    Each scenario is planned with :func:`segplan.plan_scenario` (``options`` passed on);
+    Each scenario is planned with :func:`segplan.plan_scenario` (the paper's search, ``options`` passed on);
     meanwhile every call of the planner's link cost (``Expander.link_cost``, which uses
     [2] inside the domain and [1] outside: :func:`segplan.cost.longd`) is recorded, for
     links (``g``) and heuristic estimates (``h'`` (a)) alike. The unions are the ones the
@@ -795,7 +795,7 @@ def planner_links(scenarios, **options):
         record.clear()
         with mock.patch.object(Expander, "link_cost", link_cost):
             try:
-                unions = {id(u) for u in plan_scenario(scenario, **options).unions}
+                unions = {id(u) for u in plan_scenario(scenario, **{"planner": "paper", **options}).unions}
             except NoPathError:
                 unions = set()
         rows += [(name, u.d / u.L, u.phi0, u.phi1, u.alpha, id(u) in unions) for u in record]
