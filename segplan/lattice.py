@@ -340,7 +340,7 @@ def plan_lattice(
     ----------
     scenario : segplan.Scenario
     resolution : float, optional
-        Lattice cell size (m); default ``L / 4``.
+        Lattice cell size (m); default ``L / 8`` (then ``L / 16`` if ``retry``).
     weight : float
         Factor on the admissible ``h'`` (>= 1; 1: the cheapest plan over the lattice).
     max_expansions, time_limit : int, float
@@ -415,7 +415,7 @@ def lattice_search(
     cell = _check(cell, "cell", 0.0, allow_none=True)
     if not isinstance(retry, bool):
         raise ValueError(f"retry must be True or False, got {retry!r}")
-    res = resolution or 0.25 * L
+    res = resolution or 0.125 * L
     tries = [res, 0.5 * res] if retry else [res]
     # off-line work, outside the planning time (as the paper's search): the primitives (once
     # per robot and resolution), the fitted coefficients of the heuristic frame and of [2]
@@ -442,7 +442,8 @@ def lattice_search(
     if cell is None:
         fb = scenario.free_bounds
         span = (fb[2] - fb[0]) + (fb[3] - fb[1]) if fb is not None else 40.0 * L
-        cell = 0.5 * fine if (span / (0.5 * fine)) ** 2 <= 4.0e6 else fine
+        # half the finest lattice cell, but not below L / 16 and not over ~4 million cells
+        cell = 0.5 * fine if 0.5 * fine >= L / 16.0 - 1e-12 and (span / (0.5 * fine)) ** 2 <= 4.0e6 else fine
     elif abs(round(fine / cell) * cell - fine) > 1e-9 * fine:
         raise ValueError(f"cell must divide the finest resolution {fine:g} m, got {cell!r}")
     pad = int(math.ceil(reach / cell)) + 2
