@@ -69,7 +69,7 @@ from .clearance import ClearanceGrid, DistanceField, union_free_near, union_poin
 from .cost import longd_exact_intrinsic
 from .dubins import dubins_length_scalar
 from .frame import heuristic_coefficients
-from .primitives import heading_angles, primitive_set
+from .primitives import heading_angles, max_reach, primitive_set
 from .union import Union
 
 __all__ = ["lattice_search", "plan_lattice"]
@@ -418,9 +418,9 @@ def lattice_search(
     res = resolution or 0.125 * L
     tries = [res, 0.5 * res] if retry else [res]
     # off-line work, outside the planning time (as the paper's search): the primitives (once
-    # per robot and resolution), the fitted coefficients of the heuristic frame and of [2]
-    for r in tries:
-        primitive_set(L, robot.max_steer, r)
+    # per robot and resolution; those of the retry when it comes), the fitted coefficients of
+    # the heuristic frame and of [2]
+    primitive_set(L, robot.max_steer, tries[0])
     heuristic_coefficients()
     calibration()
     t0 = time.perf_counter() if t0 is None else t0
@@ -432,12 +432,7 @@ def lattice_search(
     direct = None if start == goal else ex.union(start, goal)
     if start == goal or (direct is not None and ws.union_free(direct)):
         return _direct_plan(ws, start, direct, t0), ex
-    reach = max(
-        float(np.abs(p.points).max())
-        for t in tries
-        for prims in primitive_set(L, robot.max_steer, t).by_heading
-        for p in prims
-    )
+    reach = max(max_reach(L, robot.max_steer, t) for t in tries)
     fine = tries[-1]
     if cell is None:
         fb = scenario.free_bounds

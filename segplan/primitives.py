@@ -43,7 +43,7 @@ from .frame import heuristic_alpha
 from .pose import alpha_interval, wrap
 from .union import Union, cubic_coefficients
 
-__all__ = ["HEADING_VECTORS", "Primitive", "PrimitiveSet", "heading_angles", "primitive_set"]
+__all__ = ["HEADING_VECTORS", "Primitive", "PrimitiveSet", "heading_angles", "max_reach", "primitive_set"]
 
 #: The 16 grid-aligned headings, as integer direction vectors (counter-clockwise from +x).
 HEADING_VECTORS = (
@@ -182,13 +182,23 @@ def _rotate_quarter(p: Primitive, q: int) -> Primitive:
     )  # fmt: skip
 
 
+def _chord_reach(r: float, R: float) -> float:
+    """Longest chord of a turning primitive: a 50 deg turn at 1.7 R, plus two cells."""
+    return 2.0 * 1.7 * R * math.sin(math.radians(25.0)) + 2.0 * r
+
+
+def max_reach(L: float, max_steer: float, resolution: float) -> float:
+    """A bound of ``|points|`` of every primitive of :func:`primitive_set` (kept by construction)."""
+    return 1.25 * _chord_reach(float(resolution), float(L) / math.tan(max_steer)) + float(L)
+
+
 def _candidates(h0: int, r: float, R: float):
     """Lattice end states ``(i, j, h1)`` of turning unions from ``(0, 0, h0)`` that a cubic joins.
 
     Returns arrays ``i, j, h1, d, phi0, phi1, lo, hi`` (``lo, hi``: the feasible alpha interval).
     """
     th0 = _ANGLES[h0]
-    reach = 2.0 * 1.7 * R * math.sin(math.radians(25.0)) + 2.0 * r  # chord of a 50 deg turn at 1.7 R
+    reach = _chord_reach(r, R)
     m = int(math.ceil(reach / r))
     g = np.arange(-m, m + 1)
     I, J, T = (a.ravel() for a in np.meshgrid(g, g, np.array(TURNS), indexing="ij"))
@@ -306,6 +316,7 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     L, r = float(L), float(resolution)
     kmax = math.tan(max_steer) / L
     R = 1.0 / kmax
+    bound = max_reach(L, max_steer, r)
     base: list[list[Primitive]] = [[] for _ in range(4)]
     for h0 in range(4):  # the straight unit step
         i, j = HEADING_VECTORS[h0]
@@ -334,7 +345,7 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
         if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE)):
             continue
         p = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
-        if p.peak_curvature > kmax:
+        if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
             continue
         base[h0].append(p)
         per[key] = per.get(key, 0) + 1

@@ -10,7 +10,7 @@ import segplan
 from segplan import NoPathError, Robot, make_scenario, measure_scenario_path, plan_poses, plan_scenario
 from segplan.dubins import dubins_length, dubins_length_scalar
 from segplan.lattice import plan_lattice
-from segplan.primitives import NH, primitive_set
+from segplan.primitives import NH, max_reach, primitive_set
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 DEG = math.pi / 180.0
@@ -85,6 +85,7 @@ def test_primitives_keep_the_steering_limit_and_cost_longd():
             assert u.max_curvature() <= kmax * (1 + 1e-9)
             assert math.isclose(p.cost, segplan.longd_exact(u.p0, u.p1, u.alpha, 1.0), rel_tol=1e-7)
             assert u.p1[0] == pytest.approx(0.25 * p.di) and u.p1[1] == pytest.approx(0.25 * p.dj)
+            assert np.abs(p.points).max() <= max_reach(1.0, 45 * DEG, 0.25)  # the grid's pad relies on it
 
 
 def test_primitives_turn_close_to_the_minimum_radius():
