@@ -132,7 +132,7 @@ class GoalApproaches:
         """Unions from state ``key`` to the ``tries`` most promising approach states."""
         from .pose import Pose
 
-        if not len(self.approach_keys):
+        if not len(self.approach_keys) or ("final", key) in self.banned:
             return
         a = self.approach_lattice
         est = g + self.approach_cost + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)

@@ -148,6 +148,8 @@ class _LatticeSearch(GoalApproaches):
         """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the goal."""
         from .pose import Pose
 
+        if ("final", key) in self.banned:
+            return
         u = self.ex.union(Pose(*P), self.goal)
         if u is None or not self.ws.curvature_ok(u):
             return
@@ -488,11 +490,8 @@ def lattice_search(
             bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
             if not bad:
                 return plan, ex
-            for i in bad:
-                if i < len(edges):
-                    banned.add(edges[i])
-            if any(i >= len(edges) for i in bad):
-                break  # cannot ban a final union; stop this resolution
+            for i in bad:  # never seen in our tests; the search runs again without them
+                banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
         expanded_total += expanded
         if outcome != "exhausted" or k == len(tries) - 1:
