@@ -286,6 +286,44 @@ class _LatticeSearch(GoalApproaches):
         )
 
 
+#: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
+MAX_CELLS = 2.0e6
+
+
+def _grid_plan(scenario, tries, cell, margin, free_resolution):
+    """Resolutions to try and the clearance grid's cell (which must divide each of them).
+
+    By default the cell is half the finest resolution but not below ``L / 16``; where the
+    grid would exceed :data:`MAX_CELLS` (an estimate from the floor's size, any rotation), the
+    cell grows to the finest resolution, then the retry is dropped, then (only when the
+    resolution was not given) the lattice coarsens by halves, up to ``L``.
+    """
+    L = scenario.robot.L
+    fine = tries[-1]
+    if cell is not None:
+        if any(abs(round(t / cell) * cell - t) > 1e-9 * t for t in tries):
+            raise ValueError(f"cell must divide the resolutions {tries}, got {cell!r}")
+        return tries, cell
+    fb = scenario.free_bounds
+    if fb is None:
+        pts = np.concatenate([np.array([scenario.start[:2], scenario.goal[:2]])] + list(scenario.enlarged))
+        fb = (*(pts.min(axis=0) - margin), *(pts.max(axis=0) + margin))
+    area = 0.5 * ((fb[2] - fb[0]) + (fb[3] - fb[1])) ** 2  # the rotated box, at worst
+    cell = 0.5 * fine if 0.5 * fine >= L / 16.0 - 1e-12 else fine
+    while area / cell**2 > MAX_CELLS:
+        if cell < fine:
+            cell = fine
+        elif len(tries) > 1:
+            tries = tries[:1]
+            cell = tries[0]
+        elif free_resolution and 2.0 * tries[0] <= L:
+            tries = [2.0 * tries[0]]
+            cell = tries[0]
+        else:
+            break
+    return tries, cell
+
+
 def _direct_plan(ws, start, u, t0):
     """The plan of one free union (or none: the start is the goal)."""
     from .search import Plan
@@ -355,7 +393,9 @@ def plan_lattice(
         Within this distance of the goal every expanded state tries the direct union;
         default ``4 R + 2 L``.
     cell : float, optional
-        Cell size of the clearance grid (default from the floor's area, at least ``L / 20``).
+        Cell size of the clearance grid (m; it must divide every resolution tried); by
+        default half the finest resolution, not below ``L / 16``, coarser on large floors
+        (:data:`MAX_CELLS`, where the lattice coarsens too unless ``resolution`` is given).
 
     Returns
     -------
@@ -419,6 +459,7 @@ def lattice_search(
         raise ValueError(f"retry must be True or False, got {retry!r}")
     res = resolution or 0.125 * L
     tries = [res, 0.5 * res] if retry else [res]
+    tries, cell = _grid_plan(scenario, tries, cell, 4.0 * L + 4.0 * R, resolution is None)
     # off-line work, outside the planning time (as the paper's search): the primitives (once
     # per robot and resolution; those of the retry when it comes), the fitted coefficients of
     # the heuristic frame and of [2]
@@ -435,14 +476,6 @@ def lattice_search(
     if start == goal or (direct is not None and ws.union_free(direct)):
         return _direct_plan(ws, start, direct, t0), ex
     reach = max(max_reach(L, robot.max_steer, t) for t in tries)
-    fine = tries[-1]
-    if cell is None:
-        fb = scenario.free_bounds
-        span = (fb[2] - fb[0]) + (fb[3] - fb[1]) if fb is not None else 40.0 * L
-        # half the finest lattice cell, but not below L / 16 and not over ~4 million cells
-        cell = 0.5 * fine if 0.5 * fine >= L / 16.0 - 1e-12 and (span / (0.5 * fine)) ** 2 <= 4.0e6 else fine
-    elif abs(round(fine / cell) * cell - fine) > 1e-9 * fine:
-        raise ValueError(f"cell must divide the finest resolution {fine:g} m, got {cell!r}")
     pad = int(math.ceil(reach / cell)) + 2
     grid = ClearanceGrid(ws.convex, tuple(start), scenario.free_bounds, cell, pad, goal, 4.0 * L + 4.0 * R)
     gl = grid.to_lattice(np.array([goal[:2]]))[0]
