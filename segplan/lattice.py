@@ -286,6 +286,49 @@ class _LatticeSearch(GoalApproaches):
         )
 
 
+#: Nodes ahead that :func:`_shortcut` tries to reach by one union.
+SHORTCUT_WINDOW = 24
+
+
+def _shortcut(plan, ex, t0):
+    """Greedy shortcuts of a found plan: from each node, the farthest node within
+    :data:`SHORTCUT_WINDOW` that one free union reaches for no more LONGD than the chain.
+
+    A lattice plan has a node every few tenths of a metre; this keeps its shape with far
+    fewer nodes, so the refinement (whose shortcut step is quadratic in the nodes) stays
+    fast on long plans. Every new union passes the certified test
+    (:meth:`segplan.expansion.Workspace.union_free`).
+    """
+    import dataclasses
+
+    nodes, unions, kinds = list(plan.nodes), list(plan.unions), list(plan.kinds)
+    if len(unions) < 3:
+        return plan
+    cost = [ex.link_cost(u) for u in unions]
+    out_n, out_u, out_k = [nodes[0]], [], [kinds[0]]
+    i = 0
+    while i < len(unions):
+        best = None
+        for j in range(min(len(unions), i + SHORTCUT_WINDOW), i + 1, -1):
+            u = ex.union(nodes[i], nodes[j])
+            if u is None or not ex.link_cost(u) <= sum(cost[i:j]) or not ex.ws.union_free(u):
+                continue
+            best = (j, u)
+            break
+        j, u = best if best is not None else (i + 1, unions[i])
+        out_n.append(nodes[j])
+        out_u.append(u)
+        out_k.append(kinds[j])
+        i = j
+    total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
+    if not total <= plan.cost:
+        return plan
+    return dataclasses.replace(
+        plan, nodes=tuple(out_n), unions=tuple(out_u), kinds=tuple(out_k), cost=total,
+        seconds=time.perf_counter() - t0,
+    )  # fmt: skip
+
+
 #: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
 MAX_CELLS = 2.0e6
 
@@ -522,7 +565,7 @@ def lattice_search(
             # makes the guarantee independent of it)
             bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
             if not bad:
-                return plan, ex
+                return _shortcut(plan, ex, t0), ex
             for i in bad:  # never seen in our tests; the search runs again without them
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
