@@ -287,17 +287,17 @@ class _LatticeSearch(GoalApproaches):
 
 
 #: Nodes ahead that :func:`_shortcut` tries to reach by one union.
-SHORTCUT_WINDOW = 24
+SHORTCUT_WINDOW = 16
 
 
-def _shortcut(plan, ex, t0):
+def _shortcut(plan, ex, grid, t0):
     """Greedy shortcuts of a found plan: from each node, the farthest node within
     :data:`SHORTCUT_WINDOW` that one free union reaches for no more LONGD than the chain.
 
     A lattice plan has a node every few tenths of a metre; this keeps its shape with far
     fewer nodes, so the refinement (whose shortcut step is quadratic in the nodes) stays
-    fast on long plans. Every new union passes the certified test
-    (:meth:`segplan.expansion.Workspace.union_free`).
+    fast on long plans. Every new union keeps the steering limit and is free: screened on
+    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure.
     """
     import dataclasses
 
@@ -311,7 +311,11 @@ def _shortcut(plan, ex, t0):
         best = None
         for j in range(min(len(unions), i + SHORTCUT_WINDOW), i + 1, -1):
             u = ex.union(nodes[i], nodes[j])
-            if u is None or not ex.link_cost(u) <= sum(cost[i:j]) or not ex.ws.union_free(u):
+            if u is None or not ex.ws.curvature_ok(u) or not ex.link_cost(u) <= sum(cost[i:j]):
+                continue
+            pts, dl = union_points(u)
+            free, bad = grid.screen(grid.to_lattice(pts)[None], dl)
+            if bad[0] or not (free[0] or union_free_near(ex.ws, u, pts, dl)[0]):
                 continue
             best = (j, u)
             break
@@ -321,7 +325,7 @@ def _shortcut(plan, ex, t0):
         out_k.append(kinds[j])
         i = j
     total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
-    if not total <= plan.cost:
+    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in out_u):  # the certified test
         return plan
     return dataclasses.replace(
         plan, nodes=tuple(out_n), unions=tuple(out_u), kinds=tuple(out_k), cost=total,
@@ -522,7 +526,7 @@ def lattice_search(
     pad = int(math.ceil(reach / cell)) + 2
     grid = ClearanceGrid(ws.convex, tuple(start), scenario.free_bounds, cell, pad, goal, 4.0 * L + 4.0 * R)
     gl = grid.to_lattice(np.array([goal[:2]]))[0]
-    field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 2e5) * cell))
+    field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 5e4) * cell))
 
     def fail(reason, message, expanded, generated, best):
         raise NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
@@ -565,7 +569,7 @@ def lattice_search(
             # makes the guarantee independent of it)
             bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
             if not bad:
-                return _shortcut(plan, ex, t0), ex
+                return _shortcut(plan, ex, grid, t0), ex
             for i in bad:  # never seen in our tests; the search runs again without them
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
