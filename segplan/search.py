@@ -71,6 +71,9 @@ COSTS = ("longd", "distance")
 #: ``planner`` of :func:`plan_scenario`: the lattice planner (beyond the paper, the default)
 #: or the paper's search.
 PLANNERS = ("lattice", "paper")
+#: Share of ``time_limit`` given to the lattice planner; if it stops at a limit, the paper's
+#: search gets the rest (a fallback: where it finds a plan, that plan is returned, refined).
+LATTICE_SHARE = 0.8
 
 
 class NoPathError(RuntimeError):
@@ -355,7 +358,9 @@ def plan_scenario(
         ``"lattice"`` (default, beyond the paper): the resolution-complete A* over a
         lattice of cubic-union primitives (:mod:`segplan.lattice`); ``heuristic``,
         ``cost``, ``version``, ``ds``, ``alpha_method``, ``max_turn_chain`` and
-        ``expander`` then do not apply. ``"paper"``: the paper's search (this module).
+        ``expander`` then do not apply; if the lattice search stops at a limit (not when it
+        is exhausted) the paper's search gets the time left (:data:`LATTICE_SHARE`).
+        ``"paper"``: the paper's search (this module).
     clearance : float
         Safety margin (m, >= 0) beyond ``half_width``: the search and the refinement plan
         around obstacles enlarged by ``half_width + clearance`` and walls moved in as
@@ -379,6 +384,7 @@ def plan_scenario(
         refine = planner == "lattice"
     if not (isinstance(refine, bool) or isinstance(refine, dict)):
         raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
+    given_expansions = max_expansions
     if max_expansions is None:
         max_expansions = 3000 if planner == "paper" else 200_000
     if (
@@ -398,9 +404,29 @@ def plan_scenario(
     if planner == "lattice":
         from .lattice import lattice_search
 
-        found, ex = lattice_search(
-            scenario, max_expansions=int(max_expansions), time_limit=float(time_limit), **(lattice or {})
-        )
+        t_start = time.perf_counter()
+        try:
+            found, ex = lattice_search(
+                scenario,
+                max_expansions=int(max_expansions),
+                time_limit=LATTICE_SHARE * float(time_limit),
+                **(lattice or {}),
+            )
+        except NoPathError as err:
+            if err.reason == "exhausted":
+                raise  # no path on the lattice, or none at all
+            # a limit was hit: the paper's search, fast where it succeeds, gets the time left
+            left = float(time_limit) - (time.perf_counter() - t_start)
+            try:
+                return plan_scenario(
+                    scenario,
+                    planner="paper",
+                    refine=refine,
+                    time_limit=max(left, 1e-3),
+                    max_expansions=given_expansions,
+                )
+            except NoPathError:
+                raise err from None
         if refine is False:
             return found
         return refine_with(found, ex, **({} if refine is True else refine))
