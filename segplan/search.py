@@ -71,9 +71,9 @@ COSTS = ("longd", "distance")
 #: ``planner`` of :func:`plan_scenario`: the lattice planner (beyond the paper, the default)
 #: or the paper's search.
 PLANNERS = ("lattice", "paper")
-#: Share of ``time_limit`` given to the lattice planner; if it stops at a limit, the paper's
-#: search gets the rest (a fallback: where it finds a plan, that plan is returned, refined).
-LATTICE_SHARE = 0.8
+#: Share of ``time_limit`` given to the paper's search that runs before the lattice planner
+#: (``planner="lattice"``); the lattice gets the rest.
+PAPER_SHARE = 0.2
 
 
 class NoPathError(RuntimeError):
@@ -358,8 +358,9 @@ def plan_scenario(
         ``"lattice"`` (default, beyond the paper): the resolution-complete A* over a
         lattice of cubic-union primitives (:mod:`segplan.lattice`); ``heuristic``,
         ``cost``, ``version``, ``ds``, ``alpha_method``, ``max_turn_chain`` and
-        ``expander`` then do not apply; if the lattice search stops at a limit (not when it
-        is exhausted) the paper's search gets the time left (:data:`LATTICE_SHARE`).
+        ``expander`` then do not apply. The paper's search (default options) runs first,
+        within :data:`PAPER_SHARE` of ``time_limit``, then the lattice; the shorter plan
+        found is refined (the paper's alone if the lattice stops at a limit).
         ``"paper"``: the paper's search (this module).
     clearance : float
         Safety margin (m, >= 0) beyond ``half_width``: the search and the refinement plan
@@ -405,31 +406,41 @@ def plan_scenario(
         from .lattice import lattice_search
 
         t_start = time.perf_counter()
+        # the paper's search first (fast where it succeeds), then the lattice; the shorter
+        # plan found is refined
+        paper = None
+        try:
+            paper = plan_scenario(
+                scenario,
+                planner="paper",
+                refine=False,
+                time_limit=PAPER_SHARE * float(time_limit),
+                max_expansions=given_expansions,
+            )
+        except NoPathError:
+            pass
         try:
             found, ex = lattice_search(
                 scenario,
                 max_expansions=int(max_expansions),
-                time_limit=LATTICE_SHARE * float(time_limit),
+                time_limit=max(float(time_limit) - (time.perf_counter() - t_start), 1e-3),
                 **(lattice or {}),
             )
-        except NoPathError as err:
-            if err.reason == "exhausted":
-                raise  # no path on the lattice, or none at all
-            # a limit was hit: the paper's search, fast where it succeeds, gets the time left
-            left = float(time_limit) - (time.perf_counter() - t_start)
-            try:
-                return plan_scenario(
-                    scenario,
-                    planner="paper",
-                    refine=refine,
-                    time_limit=max(left, 1e-3),
-                    max_expansions=given_expansions,
-                )
-            except NoPathError:
-                raise err from None
+        except NoPathError:
+            if paper is None:
+                raise
+            found, ex = paper, None  # a plan off the lattice (or beyond the lattice's limits)
+        if paper is not None and paper.cost < found.cost:
+            found, ex = paper, None
+        found = dataclasses.replace(found, seconds=time.perf_counter() - t_start)
         if refine is False:
             return found
-        return refine_with(found, ex, **({} if refine is True else refine))
+        options = {} if refine is True else refine
+        if ex is None:  # the paper's plan: a fresh expansion engine (the refinement's own)
+            from .refine import refine as refine_plan
+
+            return refine_plan(found, scenario, **options)
+        return refine_with(found, ex, **options)
     robot = scenario.robot
     L = robot.L
     # off-line work, outside the planning time (the paper: "the processing of the model of

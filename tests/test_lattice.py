@@ -118,9 +118,12 @@ def test_dubins_known_values_and_scalar_twin():
 @pytest.mark.parametrize("seed", [0, 1, 3, 5])
 def test_random_floors_valid_plans(seed):
     sc = random_floor(seed)
-    plan = plan_scenario(sc)
-    assert plan.refinement is not None and plan.version == "lattice"
+    plan = plan_scenario(sc)  # the shorter of the paper's and the lattice's plans, refined
+    assert plan.refinement is not None and plan.version in ("lattice", "b")
     assert_valid(plan, sc)
+    lattice = plan_lattice(sc)
+    assert lattice.version == "lattice" and lattice.refinement is None
+    assert_valid(lattice, sc)
 
 
 def test_deterministic():
