@@ -72,7 +72,8 @@ COSTS = ("longd", "distance")
 #: or the paper's search.
 PLANNERS = ("lattice", "paper")
 #: Share of ``time_limit`` given to the paper's search that runs before the lattice planner
-#: (``planner="lattice"``); the lattice gets the rest.
+#: (``planner="lattice"``); the lattice gets the rest, or this share too when the paper's
+#: search has found a plan already.
 PAPER_SHARE = 0.2
 
 
@@ -423,7 +424,13 @@ def plan_scenario(
             found, ex = lattice_search(
                 scenario,
                 max_expansions=int(max_expansions),
-                time_limit=max(float(time_limit) - (time.perf_counter() - t_start), 1e-3),
+                time_limit=max(
+                    min(
+                        float(time_limit) - (time.perf_counter() - t_start),
+                        math.inf if paper is None else PAPER_SHARE * float(time_limit),
+                    ),
+                    1e-3,
+                ),
                 **(lattice or {}),
             )
         except NoPathError:
