@@ -70,14 +70,14 @@ def bench(scenario, heuristic: str, runs: int, warmup: bool = True, **options) -
     if warmup:
         offline_costs()
         try:
-            plan_scenario(scenario, heuristic=heuristic, **options)
+            plan_scenario(scenario, heuristic=heuristic, **{"planner": "paper", **options})
         except NoPathError:
             pass
     times, cpu, result, error = [], [], None, None
     for _ in range(runs):
         t0, c0 = time.perf_counter(), time.process_time()
         try:
-            result = plan_scenario(scenario, heuristic=heuristic, **options)
+            result = plan_scenario(scenario, heuristic=heuristic, **{"planner": "paper", **options})
         except NoPathError as exc:
             error = exc
         cpu.append(time.process_time() - c0)

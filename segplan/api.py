@@ -17,6 +17,7 @@ heuristic frame and of formula [2], once per process) is not counted in
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 import weakref
@@ -24,15 +25,17 @@ import weakref
 from .cost import checked_intrinsic, longd_exact_intrinsic
 from .expansion import Expander
 from .frame import heuristic_coefficients
+from .lattice import lattice_search
 from .links import LinkModel
-from .path import Plan
+from .path import NoPathError, Plan
 from .problem import COSTS, HEURISTICS, Problem, characteristic_dimension
+from .refine import refine as refine_plan
 from .refine import refine_with
 from .search import astar
 from .validity import Workspace
-from .world import Robot, Scenario, make_scenario
+from .world import Robot, Scenario, make_scenario, with_clearance
 
-__all__ = ["plan", "plan_scenario", "plan_scenario_observed"]
+__all__ = ["PAPER_SHARE", "PLANNERS", "plan", "plan_scenario", "plan_scenario_observed"]
 
 
 _DS_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -79,8 +82,9 @@ def plan(
     heuristic : {"a", "b", "c"}
         The paper's ``h'`` (see the module docstring).
     **options
-        Passed to :func:`plan_scenario` (``cost``, ``version``, ``ds``, ``alpha_method``,
-        ``max_expansions``, ``time_limit``, ``expander``).
+        Passed to :func:`plan_scenario` (``planner``, ``refine``, ``clearance``, ``cost``,
+        ``version``, ``ds``, ``alpha_method``, ``max_expansions``, ``time_limit``,
+        ``max_turn_chain``, ``expander``, ``lattice``).
 
     Returns
     -------
@@ -105,19 +109,29 @@ def _check_choice(value, choices, name):
     return value
 
 
+#: ``planner`` of :func:`plan_scenario`: the lattice planner (beyond the paper, the default)
+#: or the paper's search.
+PLANNERS = ("lattice", "paper")
+#: Share of ``time_limit`` the default planner gives the paper's search before the lattice.
+PAPER_SHARE = 0.2
+
+
 def plan_scenario(
     scenario: Scenario,
     heuristic: str = "a",
     *,
+    planner: str = "lattice",
+    refine: bool | dict | None = None,
+    clearance: float = 0.0,
     cost: str = "longd",
     version: str = "b",
     ds: float | None = None,
     alpha_method: str = "heuristic",
-    max_expansions: int = 3000,
+    max_expansions: int | None = None,
     time_limit: float = 10.0,
     max_turn_chain: int = 4,
     expander: dict | None = None,
-    refine: bool | dict = False,
+    lattice: dict | None = None,
 ) -> Plan:
     """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
 
@@ -127,10 +141,26 @@ def plan_scenario(
         From :func:`segplan.load_scenario`, :func:`segplan.make_scenario` or
         :func:`segplan.random_world`.
     heuristic : {"a", "b", "c"}
-        ``h'``: (a) LONGD of the direct union, (b) distance, (c) their weighted average.
+        ``h'`` of the paper's search: (a) LONGD of the direct union, (b) distance, (c)
+        their weighted average.
+    planner : {"lattice", "paper"}
+        ``"lattice"`` (default, beyond the paper): the paper's search first, within
+        :data:`PAPER_SHARE` of ``time_limit``, then the A* over a lattice of cubic-union
+        primitives (:func:`segplan.lattice.lattice_search`); the shorter plan found is
+        refined. ``"paper"``: the paper's search alone, exactly as the paper describes it
+        (the book's reproduction chapters call it so).
+    refine : bool or dict, optional
+        Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
+        splits, local moves of the nodes), with default options (True) or these
+        keyword arguments (a dict). ``Plan.seconds`` then counts search and refinement.
+        Default: True for the lattice planner, False for the paper's search.
+    clearance : float
+        Safety margin (m, >= 0) beyond ``half_width``: the search and the refinement plan
+        around obstacles enlarged by ``half_width + clearance`` and walls moved in as
+        much (0: the paper's model). The start and goal must be that far from them.
     cost : {"longd", "distance"}
-        Link cost: LONGD (the method) or the distance between node points (the paper's
-        baseline).
+        Link cost of the paper's search: LONGD (the method) or the distance between node
+        points (the paper's baseline).
     version : {"b", "a"}
         Reference systems of intermediate nodes (Fig. 4), see
         :class:`segplan.expansion.Expander`.
@@ -139,42 +169,111 @@ def plan_scenario(
         :func:`segplan.problem.characteristic_dimension` of the enlarged obstacles.
     alpha_method : {"heuristic", "exact"}
         Optimal reference system method (section "Optimal reference system").
-    max_expansions : int
-        Expansions before giving up (NoPathError, ``reason="expansions"``).
+    max_expansions : int, optional
+        Expansions before giving up (NoPathError, ``reason="expansions"``); default 3000
+        for the paper's search, 200000 for the lattice.
     time_limit : float
         Seconds before giving up (NoPathError, ``reason="time"``).
     max_turn_chain : int
-        Longest chain of consecutive turn states (difficult cases): four quarter turns
-        make a full circle. Bounds the part of the graph built from turn states.
+        Longest chain of consecutive turn states of the paper's search (difficult cases):
+        four quarter turns make a full circle.
     expander : dict, optional
         Further keyword arguments of :class:`segplan.expansion.Expander`
         (``max_iterations``, ``r0``, ...).
-    refine : bool or dict
-        Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
-        splits, local moves of the nodes), with default options (True) or these
-        keyword arguments (a dict). ``Plan.seconds`` then counts search and refinement.
+    lattice : dict, optional
+        Further keyword arguments of :func:`segplan.lattice.lattice_search`
+        (``resolution``, ``weight``, ``retry``, ...).
 
     Returns
     -------
     Plan
+
+    Raises
+    ------
+    ValueError
+        Bad input, naming the argument.
+    NoPathError
+        No plan within the limits; ``reason="exhausted"`` from the lattice means no path
+        exists at the resolutions it names. Carries what was explored (``best``).
     """
-    return _plan(
-        scenario,
-        heuristic,
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    _check_choice(planner, PLANNERS, "planner")
+    _check_choice(heuristic, HEURISTICS, "heuristic")
+    _check_choice(cost, COSTS, "cost")
+    if refine is None:
+        refine = planner == "lattice"
+    if not (isinstance(refine, bool) or isinstance(refine, dict)):
+        raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
+    if (
+        isinstance(clearance, bool)
+        or not isinstance(clearance, int | float)
+        or not (math.isfinite(clearance) and clearance >= 0)
+    ):
+        raise ValueError(f"clearance must be a finite number of metres >= 0, got {clearance!r}")
+    if not (isinstance(time_limit, int | float) and math.isfinite(time_limit) and time_limit > 0):
+        raise ValueError(f"time_limit must be a positive number of seconds, got {time_limit!r}")
+    if clearance > 0:
+        scenario = with_clearance(scenario, clearance)
+    paper_options = dict(
         cost=cost,
         version=version,
         ds=ds,
         alpha_method=alpha_method,
-        max_expansions=max_expansions,
-        time_limit=time_limit,
         max_turn_chain=max_turn_chain,
         expander=expander,
-        refine=refine,
     )
+    if planner == "paper":
+        return _plan(
+            scenario,
+            heuristic,
+            max_expansions=3000 if max_expansions is None else max_expansions,
+            time_limit=time_limit,
+            refine=refine,
+            **paper_options,
+        )
+    t_start = time.perf_counter()
+    # the paper's search first (fast where it succeeds), then the lattice; the shorter
+    # plan found is refined
+    paper = None
+    try:
+        paper = _plan(
+            scenario,
+            heuristic,
+            max_expansions=3000 if max_expansions is None else max_expansions,
+            time_limit=PAPER_SHARE * float(time_limit),
+            refine=False,
+            **paper_options,
+        )
+    except NoPathError:
+        pass
+    left = float(time_limit) - (time.perf_counter() - t_start)
+    if paper is not None:
+        left = min(left, PAPER_SHARE * float(time_limit))
+    try:
+        found, links = lattice_search(
+            scenario,
+            max_expansions=200_000 if max_expansions is None else max_expansions,
+            time_limit=max(left, 1e-3),
+            **(lattice or {}),
+        )
+    except NoPathError:
+        if paper is None:
+            raise
+        found, links = paper, None  # a plan off the lattice (or beyond the lattice's limits)
+    if paper is not None and paper.cost < found.cost:
+        found, links = paper, None
+    found = dataclasses.replace(found, seconds=time.perf_counter() - t_start)
+    if refine is False:
+        return found
+    options = {} if refine is True else refine
+    if links is None:  # the paper's plan: the refinement's own validity checker and link model
+        return refine_plan(found, scenario, **options)
+    return refine_with(found, links, **options)
 
 
 def plan_scenario_observed(scenario: Scenario, observer, heuristic: str = "a", **options) -> Plan:
-    """:func:`plan_scenario` with an observer of the link costs (for studies).
+    """The paper's search (``planner="paper"``) with an observer of the link costs (for studies).
 
     ``observer(union, cost)`` is called on every link cost the search asks for (``g`` of
     its links and ``h'`` (a) alike; see :class:`segplan.links.LinkModel`). The plan is the

@@ -94,6 +94,22 @@ def build_parser() -> argparse.ArgumentParser:
         help="scenario file (JSON, see below) or the name of a shipped scenario: "
         + ", ".join(shipped_scenarios()),
     )
+    p.add_argument(
+        "--planner",
+        choices=("lattice", "paper"),
+        default="lattice",
+        help="lattice (default, beyond the paper): the resolution-complete A* over a lattice of "
+        "cubic-union primitives, refined; paper: the paper's search (the options --heuristic, "
+        "--cost and --frames apply to it only)",
+    )
+    p.add_argument(
+        "--clearance",
+        type=float,
+        default=0.0,
+        metavar="M",
+        help="safety margin in metres beyond half_width, honoured by the search and the "
+        "refinement (default 0: the paper's model)",
+    )
     p.add_argument("--heuristic", choices=("a", "b", "c"), default="a", help="h' of the search (default: a)")
     p.add_argument(
         "--cost",
@@ -111,9 +127,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--refine",
-        action="store_true",
+        action=argparse.BooleanOptionalAction,
+        default=None,
         help="beyond the paper: shorten the plan found by shortcuts, splits and local moves "
-        "of its nodes (segplan.refine)",
+        "of its nodes (segplan.refine); default: on for --planner lattice, off for paper",
     )
     p.add_argument("--out", metavar="PLAN.png", help="draw the plan to this image file")
     p.add_argument(
@@ -125,9 +142,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--max-expansions",
         type=int,
-        default=3000,
+        default=None,
         metavar="N",
-        help="give up after N expansions (default 3000)",
+        help="give up after N expansions (default 3000 for --planner paper, 200000 for lattice)",
     )
     p.add_argument(
         "--time-limit", type=float, default=10.0, metavar="S", help="give up after S seconds (default 10)"
@@ -213,6 +230,8 @@ def main(argv: list[str] | None = None) -> int:
             max_expansions=args.max_expansions,
             time_limit=args.time_limit,
             refine=args.refine,
+            planner=args.planner,
+            clearance=args.clearance,
         )
     except NoPathError as exc:
         print(f"segplan: no path: {exc}", file=sys.stderr)

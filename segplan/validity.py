@@ -162,6 +162,8 @@ class Workspace:
         self._circles = [(c.centre[0], c.centre[1], c.radius * (1.0 + 1e-9) + 1e-9) for c in self.convex]
         #: Bounding boxes ``(xmin, ymin, xmax, ymax)`` of the obstacles (Python floats).
         self.boxes = [c.box for c in self.convex]
+        #: The same bounding boxes as an ``(n, 4)`` array (for vectorised screens).
+        self.box_array = np.array(self.boxes, dtype=float).reshape(-1, 4)
         # vertices as Python floats, for the scalar broad phase of :meth:`colliding`
         self._vertex_lists = [[(float(x), float(y)) for x, y in p] for p in self.polygons]
         # boxes and unit edge normals as Python floats, for the scalar :meth:`pose_free`

@@ -62,6 +62,7 @@ from .geometry import (
 from .pose import Pose, as_pose, check_length
 
 __all__ = [
+    "with_clearance",
     "MIN_LENGTH",
     "OPTIONAL_KEYS",
     "REQUIRED_KEYS",
@@ -505,3 +506,24 @@ def save_scenario(scenario: Scenario, path) -> Path:
     p = Path(path)
     p.write_text(scenario.to_json(), encoding="utf-8")
     return p
+
+
+def with_clearance(scenario: Scenario, clearance: float) -> Scenario:
+    """The scenario with its robot's ``half_width`` grown by ``clearance`` (m): the safety margin.
+
+    Raises
+    ------
+    ValueError
+        (``segplan.ScenarioError``) If the start or goal is nearer than ``clearance`` to an
+        enlarged obstacle or wall.
+    """
+    robot = scenario.robot
+    grown = Robot(robot.L, robot.half_width + float(clearance), robot.max_steer)
+    try:
+        return make_scenario(
+            grown, scenario.start, scenario.goal, scenario.obstacles, scenario.bounds,
+            name=scenario.name, description=scenario.description, path=scenario.path,
+            source=f"clearance={clearance:g}",
+        )  # fmt: skip
+    except ScenarioError as exc:
+        raise ScenarioError(f"{exc} (clearance {clearance:g} m beyond half_width)") from None

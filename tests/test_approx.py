@@ -403,7 +403,7 @@ def test_romberg_work_counts_points_and_meets_the_bound_with_four_levels():
 def test_planner_links_records_the_search_link_costs():
     sc = segplan.load_scenario(Path(__file__).parents[1] / "scenarios" / "single_obstacle.json")
     df = planner_links({"one": sc})
-    plan = segplan.plan_scenario(sc)
+    plan = segplan.plan_scenario(sc, planner="paper")
     assert len(df) > 0 and set(df["scenario"]) == {"one"}
     assert df["in_plan"].sum() >= len(plan.unions)
     expected = in_domain(

@@ -22,7 +22,7 @@ def test_plan_prints_cost_nodes_expansions_time(capsys):
 
 
 def test_plan_json(capsys):
-    assert main(["plan", SINGLE, "--json", "--heuristic", "c"]) == 0
+    assert main(["plan", SINGLE, "--json", "--heuristic", "c", "--planner", "paper"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["found"] is True and data["heuristic"] == "c"
     assert data["cost"] > 0 and data["expanded"] >= 1
@@ -30,10 +30,10 @@ def test_plan_json(capsys):
 
 
 def test_plan_refine(capsys):
-    assert main(["plan", SINGLE, "--json"]) == 0
+    assert main(["plan", SINGLE, "--json", "--planner", "paper"]) == 0
     found = json.loads(capsys.readouterr().out)
     assert found["refinement"] is None
-    assert main(["plan", SINGLE, "--json", "--refine"]) == 0
+    assert main(["plan", SINGLE, "--json", "--refine", "--planner", "paper"]) == 0
     refined = json.loads(capsys.readouterr().out)
     r = refined["refinement"]
     assert r["cost_before"] == pytest.approx(found["cost"]) and r["cost_after"] == refined["cost"]

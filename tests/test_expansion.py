@@ -236,7 +236,7 @@ def test_goal_behind_gives_turn_states():
 def test_turn_around_plan_forward_only():
     from segplan import plan
 
-    result = plan((0.0, 0.0, 0.0), (0.0, 3.0, math.pi), [], L, bounds=(-6, -4, 8, 8))
+    result = plan((0.0, 0.0, 0.0), (0.0, 3.0, math.pi), [], L, bounds=(-6, -4, 8, 8), planner="paper")
     assert result.nodes[-1] == Pose(0.0, 3.0, math.pi)
     assert len(result.unions) >= 2
     assert "turn" in result.kinds

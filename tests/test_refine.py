@@ -34,7 +34,7 @@ def plans():
     out = {}
     for name in NAMES:
         sc = segplan.load_scenario(SCENARIOS / f"{name}.json")
-        found = plan_scenario(sc)
+        found = plan_scenario(sc, planner="paper")
         out[name] = (sc, found, refine(found, sc))
     return out
 
@@ -68,7 +68,7 @@ def test_deterministic_and_same_as_plan_option(plans):
     again = refine(found, sc)
     assert again.nodes == refined.nodes and again.cost == refined.cost
     # through plan_scenario, with the search's own caches: the same chain
-    direct = plan_scenario(sc, refine=True)
+    direct = plan_scenario(sc, refine=True, planner="paper")
     assert direct.nodes == refined.nodes and direct.cost == refined.cost
     assert direct.refinement is not None
 
@@ -86,7 +86,7 @@ def test_rounds_zero_only_shortcuts(plans):
 def test_random_worlds(seed, n):
     sc = random_world(seed, n)
     try:
-        found = plan_scenario(sc)
+        found = plan_scenario(sc, planner="paper")
     except NoPathError:
         return
     refined = refine(found, sc)

@@ -68,7 +68,7 @@ def check_plan(result: Plan, scenario, n: int = 300) -> None:
 def test_random_world_plans_are_valid(seed, n, heuristic):
     sc = random_world(seed, n, bounds=(0.0, 0.0, 24.0, 16.0))
     try:
-        result = plan_scenario(sc, heuristic=heuristic, max_expansions=400)
+        result = plan_scenario(sc, heuristic=heuristic, max_expansions=400, planner="paper")
     except NoPathError as exc:
         assert exc.expanded >= 1
         return
@@ -81,7 +81,7 @@ def test_random_worlds_mostly_solved():
     for seed in range(20):
         sc = random_world(seed, 10)
         try:
-            result = plan_scenario(sc)
+            result = plan_scenario(sc, planner="paper")
         except NoPathError:
             continue
         check_plan(result, sc, n=150)
@@ -96,7 +96,7 @@ def test_random_worlds_mostly_solved():
 @pytest.mark.parametrize("heuristic", ["a", "c"])
 def test_shipped_scenarios(name, heuristic):
     sc = segplan.load_scenario(SCENARIOS / f"{name}.json")
-    result = plan_scenario(sc, heuristic=heuristic)
+    result = plan_scenario(sc, heuristic=heuristic, planner="paper")
     check_plan(result, sc)
 
 
@@ -104,7 +104,7 @@ def test_distance_baseline_and_admissible_heuristic():
     """The paper's baseline (link cost = distance) and h' (b) also give valid plans."""
     sc = segplan.load_scenario(SCENARIOS / "single_obstacle.json")
     for kw in ({"cost": "distance"}, {"heuristic": "b"}, {"version": "a"}):
-        result = plan_scenario(sc, **kw)
+        result = plan_scenario(sc, **kw, planner="paper")
         check_plan(result, sc)
         assert result.cost_kind == kw.get("cost", "longd")
 
@@ -114,15 +114,23 @@ def test_plan_through_a_gap_with_half_width():
         [[4.0, -5.0], [6.0, -5.0], [6.0, -0.9], [4.0, -0.9]],
         [[4.0, 0.9], [6.0, 0.9], [6.0, 5.0], [4.0, 5.0]],
     ]
-    result = plan((0.0, 0.0, 0.0), (11.0, 0.0, 0.0), obstacles, 1.0, bounds=(-1, -5, 13, 5), half_width=0.3)
+    result = plan(
+        (0.0, 0.0, 0.0),
+        (11.0, 0.0, 0.0),
+        obstacles,
+        1.0,
+        bounds=(-1, -5, 13, 5),
+        half_width=0.3,
+        planner="paper",
+    )
     sc = make_scenario(Robot(1.0, 0.3), (0.0, 0.0, 0.0), (11.0, 0.0, 0.0), obstacles, (-1, -5, 13, 5))
     check_plan(result, sc)
 
 
 def test_trivial_plans():
-    same = plan((1.0, 2.0, 0.3), (1.0, 2.0, 0.3), [], 1.0)
+    same = plan((1.0, 2.0, 0.3), (1.0, 2.0, 0.3), [], 1.0, planner="paper")
     assert same.nodes == (Pose(1.0, 2.0, 0.3),) and same.unions == () and same.cost == 0.0
-    straight = plan((0.0, 0.0, 0.0), (5.0, 0.0, 0.0), [], 1.0)
+    straight = plan((0.0, 0.0, 0.0), (5.0, 0.0, 0.0), [], 1.0, planner="paper")
     assert len(straight.unions) == 1 and math.isclose(straight.cost, 5.0, rel_tol=1e-9)
 
 
@@ -135,7 +143,15 @@ def test_enclosed_goal_raises_no_path_error():
         [[14.0, -3.0], [15.0, -3.0], [15.0, 3.0], [14.0, 3.0]],
     ]
     with pytest.raises(NoPathError) as info:
-        plan((0.0, 0.0, 0.0), (10.5, 0.0, 0.0), ring, 1.0, bounds=(-2, -6, 18, 6), max_expansions=300)
+        plan(
+            (0.0, 0.0, 0.0),
+            (10.5, 0.0, 0.0),
+            ring,
+            1.0,
+            bounds=(-2, -6, 18, 6),
+            max_expansions=300,
+            planner="paper",
+        )
     exc = info.value
     assert exc.reason in ("exhausted", "expansions")
     assert exc.expanded >= 1 and exc.generated >= 1 and exc.seconds >= 0
@@ -148,11 +164,11 @@ def test_enclosed_goal_raises_no_path_error():
 def test_limits_stop_the_search():
     sc = segplan.load_scenario(SCENARIOS / "turn_around.json")
     with pytest.raises(NoPathError) as info:
-        plan_scenario(sc, max_expansions=1)
+        plan_scenario(sc, max_expansions=1, planner="paper")
     assert info.value.reason == "expansions" and info.value.expanded == 1
     assert "the expansion limit max_expansions=1 was reached" in str(info.value)
     with pytest.raises(NoPathError) as info:
-        plan_scenario(sc, time_limit=1e-9)
+        plan_scenario(sc, time_limit=1e-9, planner="paper")
     assert info.value.reason == "time"
     assert "the time limit time_limit=1e-09 s was reached" in str(info.value)
 
@@ -207,10 +223,15 @@ def test_characteristic_dimension():
 def test_heuristic_c_limits():
     """(c) with d_s = 0 weighs (a) fully; with a huge d_s it is the distance (b)."""
     sc = segplan.load_scenario(SCENARIOS / "fig5_example1.json")
-    assert plan_scenario(sc, "c", ds=0.0).nodes == plan_scenario(sc, "a").nodes
-    assert plan_scenario(sc, "c", ds=1e12).nodes == plan_scenario(sc, "b").nodes
+    assert (
+        plan_scenario(sc, "c", ds=0.0, planner="paper").nodes == plan_scenario(sc, "a", planner="paper").nodes
+    )
+    assert (
+        plan_scenario(sc, "c", ds=1e12, planner="paper").nodes
+        == plan_scenario(sc, "b", planner="paper").nodes
+    )
     with pytest.raises(ValueError, match="ds"):
-        plan_scenario(sc, "c", ds=-1.0)
+        plan_scenario(sc, "c", ds=-1.0, planner="paper")
 
 
 def test_link_observer_records_without_changing_the_plan():
@@ -220,7 +241,7 @@ def test_link_observer_records_without_changing_the_plan():
     sc = segplan.load_scenario(Path(__file__).resolve().parents[1] / "scenarios" / "fig5_example1.json")
     seen = []
     observed = plan_scenario_observed(sc, lambda u, c: seen.append((u, c)), heuristic="a")
-    plain = plan_scenario(sc, heuristic="a")
+    plain = plan_scenario(sc, heuristic="a", planner="paper")
     assert observed.nodes == plain.nodes and observed.cost == plain.cost
     assert len(seen) > len(observed.unions)
     ids = {id(u) for u, _ in seen}

@@ -89,7 +89,7 @@ def test_run_searches_records_match_plan_scenario():
     records = run_searches(sc, searches)
     assert [r["search"] for r in records] == list(searches)
     for r, kw in zip(records, searches.values(), strict=True):
-        p = plan_scenario(sc, **kw)
+        p = plan_scenario(sc, **kw, planner="paper")
         assert r["solved"] and r["reason"] == "solved"
         assert r["cost"] == p.cost and r["expanded"] == p.expanded and r["generated"] == p.generated
         assert r["nodes"] == len(p.nodes) and r["plan"].nodes == p.nodes
@@ -225,7 +225,7 @@ def test_point_bounds_are_below_every_plan():
         assert np.allclose(lb["rear_path"][0], a0) and np.allclose(lb["front_path"][0], b0)
         for h in "ab":
             try:
-                p = plan_scenario(sc, heuristic=h)
+                p = plan_scenario(sc, heuristic=h, planner="paper")
             except segplan.NoPathError:
                 continue
             assert p.cost >= lb["front"] * (1 - 1e-9)

@@ -451,7 +451,7 @@ def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
 def planner_links(scenarios, **options):
     """Every LONGD evaluation the planner makes while solving ``scenarios``, recorded.
 
-    Each scenario is planned with :func:`segplan.plan_scenario` (``options`` passed on);
+    Each scenario is planned with the paper's search (``options`` passed on);
     meanwhile every call of the planner's link cost (:class:`segplan.links.LinkModel`, seen through
     :func:`segplan.api.plan_scenario_observed`; which uses
     [2] inside the domain and [1] outside: :func:`segplan.cost.longd`) is recorded, for

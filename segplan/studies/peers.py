@@ -474,7 +474,7 @@ def warm_up() -> float:
     )
     t0 = time.perf_counter()
     for h in HEURISTICS:
-        plan_scenario(sc, heuristic=h)
+        plan_scenario(sc, heuristic=h, planner="paper")
     return time.perf_counter() - t0
 
 
@@ -509,9 +509,11 @@ def solve_segplan(
     }
     times, plan = [], None
     try:
-        plan_scenario(sc, heuristic=heuristic, refine=refine)  # untimed: per-scenario caches (d_s)
+        plan_scenario(
+            sc, heuristic=heuristic, refine=refine, planner="paper"
+        )  # untimed: per-scenario caches (d_s)
         for _ in range(repeats):
-            plan = plan_scenario(sc, heuristic=heuristic, refine=refine)
+            plan = plan_scenario(sc, heuristic=heuristic, refine=refine, planner="paper")
             times.append(plan.seconds)
     except NoPathError as exc:
         times.append(exc.seconds)

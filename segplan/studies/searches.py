@@ -83,6 +83,7 @@ def run_searches(scenario: Scenario, searches: Mapping[str, Mapping], **common) 
         For example ``{"h'=a": {"heuristic": "a"}, "distance": {"cost": "distance"}}``.
     **common
         Keyword arguments given to every search (``max_expansions``, ``time_limit``, ...).
+        The searches are the paper's (``planner="paper"``) unless ``planner`` says otherwise.
 
     Returns
     -------
@@ -109,7 +110,7 @@ def run_searches(scenario: Scenario, searches: Mapping[str, Mapping], **common) 
         if not isinstance(kwargs, Mapping):
             raise ValueError(f"searches[{label!r}] must be a mapping of keyword arguments, got {kwargs!r}")
         try:
-            p = plan_scenario(scenario, **{**common, **kwargs})
+            p = plan_scenario(scenario, **{"planner": "paper", **common, **kwargs})
         except NoPathError as exc:
             records.append(
                 {

@@ -1,0 +1,587 @@
+"""A resolution-complete planner: A* over a lattice of cubic-union primitives (beyond the paper).
+
+Issue 12. The paper's search (:mod:`segplan.search`) expands few successors per node and
+gives up when they run out (an enclosed goal, but also many floors a sampling planner
+solves). This planner keeps the paper's pieces (cubic unions, LONGD costs, the on-line
+collision test, the steering limit) and makes the search complete on a lattice, in the
+shape of Hybrid A* (Dolgov et al. 2008):
+
+* **States** are the lattice states of :mod:`segplan.primitives` laid out in the start's
+  frame: the start is the state ``(0, 0, 0)``, a state ``(i, j, h)`` is the rear point
+  ``start + rot(theta_s) (i r, j r)`` heading ``theta_s + angle(h)``. The start is thus
+  exactly on the lattice; the goal need not be.
+* **Edges** are the primitives (short unions, tight turns near the minimum radius),
+  costs their exact LONGD [1].
+* **Analytic expansion**: from every expanded state near the goal (and from every
+  ``analytic_every``-th one, the start first) the paper's direct union to the goal is
+  tried, in its optimal reference system (with the steering fallback of
+  :class:`segplan.links.LinkModel`); if it is free and within the steering limit, the
+  goal enters the open list with ``g + LONGD``. The search ends when the goal is taken
+  from the open list.
+* **Goal region**: the goal need not be on the lattice, and a goal in a pocket may admit
+  no direct union from any lattice state. After a few expansions without a way to the
+  goal, a small tree of *approach states* is grown backwards from the goal (a lattice in
+  the goal's own frame, the primitives run backwards, every edge checked); expanded
+  states near the goal then try unions to the most promising approach states
+  (``g`` + Dubins length + the approach's cost), and a success puts the goal in the open
+  list with the whole chain.
+* **h'** is ``weight`` times the larger of two lower bounds of LONGD: the Dubins length
+  of the rear point to the goal with radius ``R`` (:func:`segplan.dubins.dubins_length`)
+  and a distance over the free cells of a coarse grid (:class:`DistanceField`: it knows
+  the obstacles, so dead ends do not trap the search; a state from which the goal's
+  region cannot be reached at all is dropped). With ``weight = 1`` the plan is the
+  cheapest over the lattice and the final unions; the default ``weight = 2`` trades
+  length (which the refinement wins back in part) for far fewer expansions.
+* **Collision**: a per-plan grid of lower bounds of the distance to the enlarged
+  obstacles and walls (a conservative rasterisation and a Euclidean distance transform,
+  :class:`ClearanceGrid`, laid out in the lattice's frame so that the cells of a
+  primitive's points are integer offsets from its start's cell) screens all primitives
+  of a node at once by their sampled points (:attr:`segplan.primitives.Primitive.points`):
+  a primitive whose points are all farther than its covering radius from every obstacle
+  is free; one with a point in a cell lying wholly inside an obstacle is not. The others
+  get a finer screen (signed distances of the points to the edge lines of the obstacles
+  near them) and, if still unsure, the package's certified test
+  (:meth:`segplan.validity.Workspace.colliding`, walls by
+  :meth:`~segplan.validity.Workspace.in_bounds`). Every union of the returned plan is
+  checked again by the certified test.
+* **Completeness**: the search expands every reachable lattice state before it says
+  ``NoPathError(reason="exhausted")``, and says at which resolution; by default it then
+  tries once more at half the cell size. Before searching, the grid's free cells
+  (8-connected) must join the start's rear point to the goal's: if they do not, no path
+  exists at all and the error comes at once (an enclosed goal).
+
+:func:`plan_lattice` returns a :class:`segplan.search.Plan` (``version="lattice"``);
+:func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines
+the plan (:mod:`segplan.refine`).
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+import time
+
+import numpy as np
+
+from .approach import GOAL, GoalApproaches
+from .clearance import ClearanceGrid, DistanceField, union_free_near, union_points
+from .cost import longd_exact_intrinsic
+from .dubins import dubins_length_scalar
+from .frame import heuristic_coefficients
+from .links import LinkModel
+from .path import NoPathError, Plan
+from .pose import Pose
+from .primitives import heading_angles, max_reach, primitive_set
+from .union import Union
+from .validity import Workspace
+from .world import Scenario
+
+__all__ = ["lattice_search", "plan_lattice"]
+
+_ANGLES = heading_angles()
+
+
+class _LatticeSearch(GoalApproaches):
+    """A* over the lattice laid out in the start's frame (module docstring)."""
+
+    def __init__(
+        self, scenario, ws, ex, grid, field, resolution, weight, analytic_every, goal_radius, banned
+    ):
+        robot = scenario.robot
+        self.ws, self.ex, self.grid, self.field = ws, ex, grid, field
+        self.L, self.R = robot.L, robot.min_turning_radius
+        self.r = r = float(resolution)
+        self.q = int(round(r / grid.cell))  # grid cells per lattice cell (exact by construction)
+        self.start, self.goal = scenario.start, scenario.goal
+        self.weight, self.every, self.goal_radius = weight, analytic_every, goal_radius
+        self.banned = banned
+        self.approach_after, self.approach_tries, self.approach_limit = 32, 2, 60
+        self.approach_budget = math.pi * self.R + 2.0 * self.L
+        ps = primitive_set(robot.L, robot.max_steer, r)
+        self.prims = ps.by_heading
+        th = self.start.theta
+        self.c, self.s = math.cos(th), math.sin(th)
+        gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
+        self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
+        self.offsets, self.delta, self.step, self.cost, self.points = [], [], [], [], []
+        for prims in ps.by_heading:
+            pts = np.stack([p.points for p in prims])
+            self.points.append(pts)
+            self.offsets.append(grid.offsets(pts))
+            self.delta.append(np.array([p.delta for p in prims]) + 1e-9)
+            self.step.append([(p.di, p.dj, p.h1) for p in prims])
+            self.cost.append([p.cost for p in prims])
+
+    def pose(self, key):
+        """World pose of a lattice state."""
+        i, j, h = key
+        x, y = i * self.r, j * self.r
+        sx, sy, th = self.start
+        return (
+            sx + self.c * x - self.s * y,
+            sy + self.s * x + self.c * y,
+            th + float(_ANGLES[h]),
+        )
+
+    def union(self, key, m, P0=None) -> Union:
+        """The union of primitive ``m`` from state ``key``, between the two states' world poses."""
+
+        p = self.prims[key[2]][m]
+        di, dj, h1 = self.step[key[2]][m]
+        P0 = Pose(*(P0 or self.pose(key)))
+        P1 = Pose(*self.pose((key[0] + di, key[1] + dj, h1)))
+        psi = math.atan2(P1.y - P0.y, P1.x - P0.x)
+        return Union.from_intrinsic(P0, P1, p.alpha, self.L, p.d, psi, p.phi0, p.phi1)
+
+    def certified(self, u: Union, pts: np.ndarray, delta: float | None = None) -> bool:
+        """:func:`segplan.clearance.union_free_near` (counts the certified tests)."""
+        free, certified = union_free_near(
+            self.ws, u, pts, self.L if delta is None else delta, delta is not None
+        )
+        self.certified_calls += certified
+        return free
+
+    def h(self, x, y, th):
+        """``weight`` times the larger of two lower bounds of LONGD: Dubins, and the grid
+        distance (lattice frame)."""
+        gx, gy, gth = self.goal_l
+        return self.weight * max(dubins_length_scalar(x, y, th, gx, gy, gth, self.R), self.field.lower(x, y))
+
+    def try_goal(self, key, P, g):
+        """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the goal."""
+
+        if ("final", key) in self.banned:
+            return
+        u = self.ex.union(Pose(*P), self.goal)
+        if u is None or not self.ws.curvature_ok(u):
+            return
+        c = self.ex.link_cost(u)
+        if not g + c < self.goal_g:
+            return
+        pts, dl = union_points(u)
+        free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
+        if bad[0] or not (free[0] or self.certified(u, pts, dl)):
+            return
+        self.goal_g, self.goal_parent = g + c, (key, [u])
+        heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
+
+    def run(self, max_expansions: int, deadline: float):
+        start = (0, 0, 0)
+        self.g = {start: 0.0}
+        self.parent = {start: None}
+        self.goal_g, self.goal_parent = math.inf, None
+        self.certified_calls = 0
+        self.approach_keys = None
+        self.heap = [(self.h(0.0, 0.0, 0.0), 0, start)]
+        closed = set()
+        counter = 1
+        expanded = 0
+        gx, gy, _ = self.goal_l
+        self.best, best_d = start, math.hypot(gx, gy)
+        reason = "exhausted"
+        heap, r, q, grid = self.heap, self.r, self.q, self.grid
+        lower, blocked = grid.lower_flat, grid.blocked_flat
+        while heap:
+            if expanded >= max_expansions:
+                reason = "expansions"
+                break
+            if expanded % 64 == 0 and time.perf_counter() > deadline:
+                reason = "time"
+                break
+            _, _, key = heapq.heappop(heap)
+            if key == GOAL:
+                return ("found", expanded)
+            if key in closed:
+                continue
+            closed.add(key)
+            expanded += 1
+            i, j, h = key
+            g = self.g[key]
+            x, y = i * r, j * r
+            hd = math.hypot(gx - x, gy - y)
+            if hd < best_d:
+                self.best, best_d = key, hd
+            P = None
+            if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
+                P = self.pose(key)
+                self.try_goal(key, P, g)
+            if self.approach_keys is None and expanded >= self.approach_after and self.goal_parent is None:
+                self.build_approaches(self.approach_budget, self.approach_limit)
+            if self.approach_keys and hd <= self.goal_radius:
+                P = P or self.pose(key)
+                self.try_approaches(key, P, g, x, y, _ANGLES[h], self.approach_tries)
+            b = grid.base(i * q, j * q)
+            if b is None:
+                continue  # at the edge of the grid (no walls): the lattice ends there
+            idx = self.offsets[h] + b
+            free = lower[idx].min(axis=1) > self.delta[h]
+            bad = blocked[idx].any(axis=1)
+            for m, (di, dj, h1) in enumerate(self.step[h]):
+                if bad[m]:
+                    continue
+                nk = (i + di, j + dj, h1)
+                if nk in closed:
+                    continue
+                ng = g + self.cost[h][m]
+                if not ng < self.g.get(nk, math.inf):
+                    continue
+                if (key, m) in self.banned:
+                    continue
+                hs = self.h((i + di) * r, (j + dj) * r, _ANGLES[h1])
+                if hs == math.inf:
+                    continue  # the goal's region cannot be reached from there
+                if not free[m]:
+                    P = P or self.pose(key)
+                    world = (self.points[h][m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
+                    if not self.certified(self.union(key, m, P), world, self.delta[h][m]):
+                        continue
+                self.g[nk] = ng
+                self.parent[nk] = (key, m)
+                heapq.heappush(heap, (ng + hs, counter, nk))
+                counter += 1
+        return (reason, expanded)
+
+    def chain(self, key):
+        """``[(parent_key, m), ...]``: the lattice edges from the start to ``key``."""
+        out = []
+        while self.parent[key] is not None:
+            out.append(self.parent[key])
+            key = out[-1][0]
+        out.reverse()
+        return out
+
+    def make_plan(self, edges, final, expanded, t0):
+        """A :class:`segplan.search.Plan` of lattice edges and the final unions to the goal (a list)."""
+
+        nodes = [Pose(*self.start)]
+        unions = []
+        cost = 0.0
+        for key, m in edges:
+            u = self.union(key, m)
+            unions.append(u)
+            nodes.append(u.p1)
+            cost += self.cost[key[2]][m]
+        kinds = ["start"] + ["lattice"] * len(edges)
+        for k, u in enumerate(final or []):
+            unions.append(u)
+            nodes.append(u.p1)
+            cost += float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8))
+            kinds.append("goal" if k == len(final) - 1 else "approach")
+        st = self.ws.stats
+        return Plan(
+            nodes=tuple(nodes),
+            unions=tuple(unions),
+            cost=cost,
+            search_cost=self.goal_g if final is not None else cost,
+            expanded=expanded,
+            generated=len(self.g),
+            seconds=time.perf_counter() - t0,
+            heuristic="dubins",
+            cost_kind="longd",
+            version="lattice",
+            collision_checks=st.collision_checks,
+            exact_checks=st.exact_checks,
+            iterations=(),
+            kinds=tuple(kinds),
+        )
+
+
+#: Nodes ahead that :func:`_shortcut` tries to reach by one union.
+SHORTCUT_WINDOW = 16
+
+
+def _shortcut(plan, ex, grid, t0):
+    """Greedy shortcuts of a found plan: from each node, the farthest node within
+    :data:`SHORTCUT_WINDOW` that one free union reaches for no more LONGD than the chain.
+
+    A lattice plan has a node every few tenths of a metre; this keeps its shape with far
+    fewer nodes, so the refinement (whose shortcut step is quadratic in the nodes) stays
+    fast on long plans. Every new union keeps the steering limit and is free: screened on
+    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure.
+    """
+    import dataclasses
+
+    nodes, unions, kinds = list(plan.nodes), list(plan.unions), list(plan.kinds)
+    if len(unions) < 3:
+        return plan
+    cost = [ex.link_cost(u) for u in unions]
+    out_n, out_u, out_k = [nodes[0]], [], [kinds[0]]
+    i = 0
+    while i < len(unions):
+        best = None
+        for j in range(min(len(unions), i + SHORTCUT_WINDOW), i + 1, -1):
+            u = ex.union(nodes[i], nodes[j])
+            if u is None or not ex.ws.curvature_ok(u) or not ex.link_cost(u) <= sum(cost[i:j]):
+                continue
+            pts, dl = union_points(u)
+            free, bad = grid.screen(grid.to_lattice(pts)[None], dl)
+            if bad[0] or not (free[0] or union_free_near(ex.ws, u, pts, dl)[0]):
+                continue
+            best = (j, u)
+            break
+        j, u = best if best is not None else (i + 1, unions[i])
+        out_n.append(nodes[j])
+        out_u.append(u)
+        out_k.append(kinds[j])
+        i = j
+    total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
+    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in out_u):  # the certified test
+        return plan
+    return dataclasses.replace(
+        plan, nodes=tuple(out_n), unions=tuple(out_u), kinds=tuple(out_k), cost=total,
+        seconds=time.perf_counter() - t0,
+    )  # fmt: skip
+
+
+#: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
+MAX_CELLS = 2.0e6
+
+
+def _grid_plan(scenario, tries, cell, margin, free_resolution):
+    """Resolutions to try and the clearance grid's cell (which must divide each of them).
+
+    By default the cell is half the finest resolution but not below ``L / 16``; where the
+    grid would exceed :data:`MAX_CELLS` (an estimate from the floor's size, any rotation), the
+    cell grows to the finest resolution, then the retry is dropped, then (only when the
+    resolution was not given) the lattice coarsens by halves, up to ``L``.
+    """
+    L = scenario.robot.L
+    fine = tries[-1]
+    if cell is not None:
+        if any(abs(round(t / cell) * cell - t) > 1e-9 * t for t in tries):
+            raise ValueError(f"cell must divide the resolutions {tries}, got {cell!r}")
+        return tries, cell
+    fb = scenario.free_bounds
+    if fb is None:
+        pts = np.concatenate([np.array([scenario.start[:2], scenario.goal[:2]])] + list(scenario.enlarged))
+        fb = (*(pts.min(axis=0) - margin), *(pts.max(axis=0) + margin))
+    area = 0.5 * ((fb[2] - fb[0]) + (fb[3] - fb[1])) ** 2  # the rotated box, at worst
+    cell = 0.5 * fine if 0.5 * fine >= L / 16.0 - 1e-12 else fine
+    while area / cell**2 > MAX_CELLS:
+        if cell < fine:
+            cell = fine
+        elif len(tries) > 1:
+            tries = tries[:1]
+            cell = tries[0]
+        elif free_resolution and 2.0 * tries[0] <= L:
+            tries = [2.0 * tries[0]]
+            cell = tries[0]
+        else:
+            break
+    return tries, cell
+
+
+def _direct_plan(ws, start, u, t0):
+    """The plan of one free union (or none: the start is the goal)."""
+
+    unions = () if u is None else (u,)
+    cost = sum(float(longd_exact_intrinsic(v.d, v.phi0, v.phi1, v.alpha, v.L, rtol=1e-8)) for v in unions)
+    return Plan(
+        nodes=(start,) + tuple(v.p1 for v in unions),
+        unions=unions,
+        cost=cost,
+        search_cost=cost,
+        expanded=0 if u is None else 1,
+        generated=1 + len(unions),
+        seconds=time.perf_counter() - t0,
+        heuristic="dubins",
+        cost_kind="longd",
+        version="lattice",
+        collision_checks=ws.stats.collision_checks,
+        exact_checks=ws.stats.exact_checks,
+        iterations=(),
+        kinds=("start",) + ("goal",) * len(unions),
+    )
+
+
+def _check(value, name, lo, integer=False, allow_none=False):
+    if value is None and allow_none:
+        return None
+    ok = (
+        not isinstance(value, bool) and isinstance(value, int | float) and math.isfinite(value) and value > lo
+    )
+    if ok and integer:
+        ok = int(value) == value
+    if not ok:
+        kind = "an integer" if integer else "a finite number"
+        raise ValueError(f"{name} must be {kind} > {lo}, got {value!r}")
+    return int(value) if integer else float(value)
+
+
+def plan_lattice(
+    scenario,
+    *,
+    resolution: float | None = None,
+    weight: float = 2.0,
+    max_expansions: int = 200_000,
+    time_limit: float = 10.0,
+    retry: bool = True,
+    analytic_every: int = 8,
+    goal_radius: float | None = None,
+    cell: float | None = None,
+):
+    """Plan on the lattice of cubic-union primitives (module docstring).
+
+    Parameters
+    ----------
+    scenario : segplan.Scenario
+    resolution : float, optional
+        Lattice cell size (m); default ``L / 8`` (then ``L / 16`` if ``retry``).
+    weight : float
+        Factor on the admissible ``h'`` (>= 1; 1: the cheapest plan over the lattice).
+    max_expansions, time_limit : int, float
+        Limits (NoPathError with ``reason="expansions"`` or ``"time"``).
+    retry : bool
+        After an exhausted lattice, search once more at half the cell size.
+    analytic_every : int
+        Far from the goal, try the direct union every this many expansions.
+    goal_radius : float, optional
+        Within this distance of the goal every expanded state tries the direct union;
+        default ``4 R + 2 L``.
+    cell : float, optional
+        Cell size of the clearance grid (m; it must divide every resolution tried); by
+        default half the finest resolution, not below ``L / 16``, coarser on large floors
+        (:data:`MAX_CELLS`, where the lattice coarsens too unless ``resolution`` is given).
+
+    Returns
+    -------
+    segplan.Plan
+        ``version="lattice"``, ``kinds`` ``"start"``, ``"lattice"`` and ``"goal"``.
+
+    Raises
+    ------
+    NoPathError
+        ``reason="exhausted"`` (no path on the lattice at the resolutions tried, named in
+        the message, or no free corridor at all), ``"expansions"`` or ``"time"``.
+    """
+    plan, _ = lattice_search(
+        scenario,
+        resolution=resolution,
+        weight=weight,
+        max_expansions=max_expansions,
+        time_limit=time_limit,
+        retry=retry,
+        analytic_every=analytic_every,
+        goal_radius=goal_radius,
+        cell=cell,
+    )
+    return plan
+
+
+def lattice_search(
+    scenario,
+    *,
+    resolution=None,
+    weight=2.0,
+    max_expansions=200_000,
+    time_limit=10.0,
+    retry=True,
+    analytic_every=8,
+    goal_radius=None,
+    cell=None,
+    t0=None,
+):
+    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used."""
+
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    robot = scenario.robot
+    L, R = robot.L, robot.min_turning_radius
+    resolution = _check(resolution, "resolution", 0.0, allow_none=True)
+    if resolution is not None and resolution > L:
+        raise ValueError(f"resolution must be at most L={L}, got {resolution!r}")
+    weight = _check(weight, "weight", 0.0)
+    if weight < 1.0:
+        raise ValueError(f"weight must be >= 1 (1: the admissible h'), got {weight!r}")
+    max_expansions = _check(max_expansions, "max_expansions", 0, integer=True)
+    time_limit = _check(time_limit, "time_limit", 0.0)
+    analytic_every = _check(analytic_every, "analytic_every", 0, integer=True)
+    goal_radius = _check(goal_radius, "goal_radius", 0.0, allow_none=True)
+    cell = _check(cell, "cell", 0.0, allow_none=True)
+    if not isinstance(retry, bool):
+        raise ValueError(f"retry must be True or False, got {retry!r}")
+    res = resolution or 0.125 * L
+    tries = [res, 0.5 * res] if retry else [res]
+    tries, cell = _grid_plan(scenario, tries, cell, 4.0 * L + 4.0 * R, resolution is None)
+    # off-line work, outside the planning time (as the paper's search): the primitives (once
+    # per robot and resolution; those of the retry when it comes), the fitted coefficients of
+    # the heuristic frame and of [2]
+    primitive_set(L, robot.max_steer, tries[0])
+    heuristic_coefficients()
+    t0 = time.perf_counter() if t0 is None else t0
+    deadline = t0 + time_limit
+    ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
+    ex = LinkModel(ws)
+    start, goal = scenario.start, scenario.goal
+    # the paper's direct union first: where it is free, it is the plan (no grid to build)
+    direct = None if start == goal else ex.union(start, goal)
+    if start == goal or (direct is not None and ws.union_free(direct)):
+        return _direct_plan(ws, start, direct, t0), ex
+    reach = max(max_reach(L, robot.max_steer, t) for t in tries)
+    pad = int(math.ceil(reach / cell)) + 2
+    grid = ClearanceGrid(ws.convex, tuple(start), scenario.free_bounds, cell, pad, goal, 4.0 * L + 4.0 * R)
+    gl = grid.to_lattice(np.array([goal[:2]]))[0]
+    field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 5e4) * cell))
+
+    def fail(reason, message, expanded, generated, best):
+        raise NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
+
+    search = None
+    la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
+    banned: set = set()
+    expanded_total = 0
+    for k, r in enumerate(tries):
+        search = _LatticeSearch(
+            scenario,
+            ws,
+            ex,
+            grid,
+            field,
+            r,
+            weight,
+            analytic_every,
+            goal_radius if goal_radius is not None else 4.0 * R + 2.0 * L,
+            banned,
+        )
+        if la != lb:
+            search.g, search.parent, search.goal_g = {(0, 0, 0): 0.0}, {(0, 0, 0): None}, math.inf
+            best = search.make_plan([], None, 0, t0)
+            fail(
+                "exhausted",
+                f"no path from {tuple(start)} to {tuple(goal)}: the goal's free region is not "
+                f"connected to the start's (grid of {grid.cell:.3g} m cells); no path exists",
+                0,
+                1,
+                best,
+            )
+        while True:
+            outcome, expanded = search.run(max_expansions - expanded_total, deadline)
+            if outcome != "found":
+                break
+            edges = search.chain(search.goal_parent[0])
+            plan = search.make_plan(edges, search.goal_parent[1], expanded_total + expanded, t0)
+            # the certified test on every union of the plan (the screen is conservative; this
+            # makes the guarantee independent of it)
+            bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
+            if not bad:
+                return _shortcut(plan, ex, grid, t0), ex
+            for i in bad:  # never seen in our tests; the search runs again without them
+                banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
+            expanded_total += expanded
+        expanded_total += expanded
+        if outcome != "exhausted" or k == len(tries) - 1:
+            best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
+            what = {
+                "exhausted": "every reachable lattice state was expanded at resolution "
+                + " and ".join(f"{t:.4g} m" for t in tries[: k + 1]),
+                "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
+                "time": f"the time limit time_limit={time_limit:g} s was reached",
+            }[outcome]
+            fail(
+                outcome,
+                f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded_total} states",
+                expanded_total,
+                len(search.g),
+                best,
+            )
+    raise AssertionError("unreachable")

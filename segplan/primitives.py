@@ -1,0 +1,353 @@
+"""Motion primitives out of cubic unions: short unions between the states of a lattice.
+
+Beyond the paper (issue 12). A symmetric cubic union that turns the robot by a small
+angle is close to a circular arc (turning by 30 deg its curvature peaks about 3.5 % above
+the circle's), so chains of short unions follow a circle close to the minimum turning
+radius ``R = L / tan(max_steer)``, which one long union cannot do (chapter 8).
+
+The lattice (:class:`PrimitiveSet`) has square cells of side ``resolution`` and the 16
+*grid-aligned* headings of the vectors ``(1, 0), (2, 1), (1, 1), (1, 2), (0, 1), ...``
+(0, 26.6, 45, 63.4, 90 deg, ...), so that a straight step along any heading ends on a
+lattice point. A primitive joins the state ``(0, 0, k)`` to a state ``(i, j, k')`` of the
+lattice by the paper's cubic union (section III) in its optimal reference system
+(:func:`segplan.frame.heuristic_alpha`; the frame of least peak curvature when that one
+breaks the steering limit); it is kept only if its rear path's curvature stays within
+``tan(max_steer) / L`` everywhere (exact maximum, :meth:`segplan.Union.max_curvature`).
+Its cost is the exact LONGD, formula [1] (Romberg).
+
+Which primitives: from each heading, the unit straight step, and for every turn by one or
+two heading steps (about 22.5 or 45 deg) the cheapest lattice end points, fewest first,
+skipping one whose end state a chain of at most three kept primitives already reaches
+at no more than ``1 + PRUNE`` times its cost (the pruning of Pivtoraiko and Kelly's
+state lattices). The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg
+(exact in integers). A union's shape and cost do not change under a rigid motion, so the
+set is computed once per ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in
+an explicit least-recently-used cache) and reused by every plan.
+
+Every primitive also carries points of its swept segment (rear point A, front wheel B and
+points between them, at abscissae along the union) relative to its start, and ``delta``:
+every point of the swept segment lies within ``delta`` of one of them. A planner screens
+a primitive by these points (:mod:`segplan.lattice`).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .cost import longd_exact_intrinsic, longd_gauss_intrinsic
+from .frame import heuristic_alpha
+from .pose import alpha_interval, wrap
+from .union import Union, cubic_coefficients
+
+__all__ = ["HEADING_VECTORS", "Primitive", "PrimitiveSet", "heading_angles", "max_reach", "primitive_set"]
+
+#: The 16 grid-aligned headings, as integer direction vectors (counter-clockwise from +x).
+HEADING_VECTORS = (
+    (1, 0), (2, 1), (1, 1), (1, 2), (0, 1), (-1, 2), (-1, 1), (-2, 1),
+    (-1, 0), (-2, -1), (-1, -1), (-1, -2), (0, -1), (1, -2), (1, -1), (2, -1),
+)  # fmt: skip
+NH = len(HEADING_VECTORS)
+#: A primitive is dropped if a chain of kept ones reaches its end state within this factor.
+PRUNE = 0.03
+#: Turns (heading steps) of the turning primitives.
+TURNS = (-2, -1, 1, 2)
+#: Turning primitives kept per start heading and turn, at most.
+PER_TURN = 3
+#: Abscissae (fractions of the frame span) and positions along the segment of the samples.
+SAMPLE_S = np.linspace(0.0, 1.0, 13)
+SAMPLE_T = np.linspace(0.0, 1.0, 7)
+_DENSE = np.linspace(0.0, 1.0, (len(SAMPLE_S) - 1) * 24 + 1)
+_STEER_ALPHAS = 15
+_PEAK_S = np.linspace(0.0, 1.0, 49)
+
+
+def heading_angles() -> np.ndarray:
+    """World angles (radians, in ``(-pi, pi]``) of the 16 lattice headings."""
+    return np.array([math.atan2(y, x) for x, y in HEADING_VECTORS])
+
+
+@dataclass(frozen=True)
+class Primitive:
+    """One motion primitive from the lattice state ``(0, 0, h0)``.
+
+    Attributes
+    ----------
+    h0, h1 : int
+        Start and end heading indices (0..15).
+    di, dj : int
+        End point in lattice cells.
+    cost : float
+        Exact LONGD [1] (front-wheel path length, m).
+    alpha : float
+        The union's alpha (radians), in its intrinsic system (rigid-motion invariant).
+    d, phi0, phi1 : float
+        Chord length and intrinsic headings.
+    peak_curvature : float
+        Largest rear-path curvature (1/m).
+    points : ndarray (n, 2)
+        Points of the swept segment relative to the start point, lattice axes.
+    delta : float
+        Every point of the swept segment lies within ``delta`` of ``points``.
+    """
+
+    h0: int
+    h1: int
+    di: int
+    dj: int
+    cost: float
+    alpha: float
+    d: float
+    phi0: float
+    phi1: float
+    peak_curvature: float
+    points: np.ndarray
+    delta: float
+
+    def union(self, x: float, y: float, theta0: float, r: float, L: float) -> Union:
+        """The primitive's union from the world pose ``(x, y, theta0)`` of its start.
+
+        ``theta0`` is the world heading of the start state (the lattice's heading ``h0``)
+        and ``r`` the cell size; the end pose is the start moved by ``(di, dj)`` cells in
+        the lattice axes, which make the angle ``theta0 - heading_angles()[h0]`` with the
+        world axes.
+        """
+        rot = theta0 - _ANGLES[self.h0]
+        c, s = math.cos(rot), math.sin(rot)
+        ex, ey = self.di * r, self.dj * r
+        p1 = (
+            x + c * ex - s * ey,
+            y + s * ex + c * ey,
+            float(wrap(theta0 + (_ANGLES[self.h1] - _ANGLES[self.h0]))),
+        )
+        psi = math.atan2(p1[1] - y, p1[0] - x)
+        return Union.from_intrinsic((x, y, theta0), p1, self.alpha, L, self.d, psi, self.phi0, self.phi1)
+
+
+_ANGLES = heading_angles()
+
+
+@dataclass(frozen=True)
+class PrimitiveSet:
+    """The primitives of every lattice heading, for one robot and resolution.
+
+    Attributes
+    ----------
+    L, max_steer, resolution : float
+    by_heading : tuple of tuple of Primitive
+        ``by_heading[h]``: the primitives that start at heading ``h``.
+    """
+
+    L: float
+    max_steer: float
+    resolution: float
+    by_heading: tuple
+
+    @property
+    def min_turning_radius(self) -> float:
+        """``R = L / tan(max_steer)``."""
+        return self.L / math.tan(self.max_steer)
+
+    def turning_radii(self) -> np.ndarray:
+        """Radius of the circle through each turning primitive's ends, tangent to its start.
+
+        ``d / (2 sin(|dtheta| / 2))`` for a turn by ``dtheta`` over a chord ``d``: the radius of
+        the circle that a chain of such primitives follows on average (relative to nothing:
+        metres).
+        """
+        out = []
+        for p in self.by_heading[0] + self.by_heading[1] + self.by_heading[2] + self.by_heading[3]:
+            turn = abs(float(wrap(_ANGLES[p.h1] - _ANGLES[p.h0])))
+            if turn > 0:
+                out.append(p.d / (2.0 * math.sin(0.5 * turn)))
+        return np.array(out)
+
+    def count(self) -> int:
+        """Primitives per heading, on average."""
+        return sum(len(b) for b in self.by_heading) // NH
+
+
+def _rotate_quarter(p: Primitive, q: int) -> Primitive:
+    """``p`` turned by ``q`` quarter turns (exact in lattice integers)."""
+    di, dj, pts = p.di, p.dj, p.points
+    for _ in range(q):
+        di, dj = -dj, di
+        pts = np.column_stack((-pts[:, 1], pts[:, 0]))
+    return Primitive(
+        (p.h0 + 4 * q) % NH, (p.h1 + 4 * q) % NH, di, dj, p.cost, p.alpha, p.d, p.phi0, p.phi1,
+        p.peak_curvature, np.ascontiguousarray(pts), p.delta,
+    )  # fmt: skip
+
+
+def _chord_reach(r: float, R: float) -> float:
+    """Longest chord of a turning primitive: a 50 deg turn at 1.7 R, plus two cells."""
+    return 2.0 * 1.7 * R * math.sin(math.radians(25.0)) + 2.0 * r
+
+
+def max_reach(L: float, max_steer: float, resolution: float) -> float:
+    """A bound of ``|points|`` of every primitive of :func:`primitive_set` (kept by construction)."""
+    return 1.25 * _chord_reach(float(resolution), float(L) / math.tan(max_steer)) + float(L)
+
+
+def _candidates(h0: int, r: float, R: float):
+    """Lattice end states ``(i, j, h1)`` of turning unions from ``(0, 0, h0)`` that a cubic joins.
+
+    Returns arrays ``i, j, h1, d, phi0, phi1, lo, hi`` (``lo, hi``: the feasible alpha interval).
+    """
+    th0 = _ANGLES[h0]
+    reach = _chord_reach(r, R)
+    m = int(math.ceil(reach / r))
+    g = np.arange(-m, m + 1)
+    I, J, T = (a.ravel() for a in np.meshgrid(g, g, np.array(TURNS), indexing="ij"))
+    H1 = (h0 + T) % NH
+    d = np.hypot(I, J) * r
+    psi = np.arctan2(J, I)
+    phi0 = wrap(th0 - psi)
+    phi1 = wrap(_ANGLES[H1] - psi)
+    lo, hi = alpha_interval(phi0, phi1)
+    ok = (d > 0) & (d <= reach) & (hi - lo > 1e-6) & (np.abs(phi0) < 0.5 * math.pi)
+    return I[ok], J[ok], H1[ok], d[ok], phi0[ok], phi1[ok], lo[ok], hi[ok]
+
+
+def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
+    """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions."""
+    X, c1, c2, c3 = (np.asarray(v, dtype=float)[..., None] for v in cubic_coefficients(d, phi0, phi1, alpha))
+    x = X * _PEAK_S
+    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
+    return np.max(np.abs(2.0 * c2 + 6.0 * c3 * x) / (1.0 + fp * fp) ** 1.5, axis=-1)
+
+
+def _best_alphas(d, phi0, phi1, lo, hi, L, kmax) -> np.ndarray:
+    """Per union: the optimal frame's alpha if its cubic keeps the steering limit (sampled),
+    else the alpha of least sampled peak curvature among ``_STEER_ALPHAS`` if that keeps it,
+    else NaN (vectorised)."""
+    a = np.clip(np.asarray(heuristic_alpha(d, phi0, phi1, L), dtype=float), lo + 1e-9, hi - 1e-9)
+    bad = ~(_peaks(d, phi0, phi1, a) <= kmax)
+    if bad.any():
+        f = (np.arange(1, _STEER_ALPHAS + 1) / (_STEER_ALPHAS + 1))[None, :]
+        grid = lo[bad, None] + (hi[bad] - lo[bad])[:, None] * f
+        pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid)
+        k = np.argmin(pk, axis=1)
+        best = grid[np.arange(len(k)), k]
+        a[bad] = np.where(pk[np.arange(len(k)), k] <= kmax, best, np.nan)
+    return a
+
+
+def _sample(u: Union, L: float) -> tuple[np.ndarray, float]:
+    """Swept-segment points of ``u`` relative to its start, and their covering radius ``delta``."""
+    x = u.x_end * SAMPLE_S
+    A = u.to_world(x, u.f(x)) - np.array(u.p0[:2])
+    h = u.heading(x)
+    U = np.column_stack((np.cos(h), np.sin(h)))
+    pts = (A[:, None, :] + L * SAMPLE_T[None, :, None] * U[:, None, :]).reshape(-1, 2)
+    # covering radius: half the longest move of A or B between consecutive abscissae (measured
+    # along a dense sampling: path length, not chord) plus half the spacing along the segment
+    xd = u.x_end * _DENSE
+    Ad = u.to_world(xd, u.f(xd))
+    hd = u.heading(xd)
+    Bd = Ad + L * np.column_stack((np.cos(hd), np.sin(hd)))
+    per = len(_DENSE) // (len(SAMPLE_S) - 1)
+    la = np.hypot(*np.diff(Ad, axis=0).T)
+    lb = np.hypot(*np.diff(Bd, axis=0).T)
+    run = max(la.reshape(-1, per).sum(axis=1).max(), lb.reshape(-1, per).sum(axis=1).max())
+    delta = 0.5 * run * 1.02 + 0.5 * L * (SAMPLE_T[1] - SAMPLE_T[0])
+    return pts, float(delta)
+
+
+def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
+    th0 = _ANGLES[h0]
+    u = Union((0.0, 0.0, th0), (i * r, j * r, _ANGLES[h1]), alpha, L)
+    pts, delta = _sample(u, L)
+    cost = float(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10))
+    return Primitive(
+        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, delta
+    )
+
+
+def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) -> bool:
+    """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?"""
+    frontier = [(0, 0, h0, 0.0)]
+    for _ in range(depth):
+        nxt = []
+        for i, j, h, c in frontier:
+            for p in kept[h]:
+                c2 = c + p.cost
+                if c2 > budget:
+                    continue
+                s = (i + p.di, j + p.dj, p.h1)
+                if s == target:
+                    return True
+                nxt.append((*s, c2))
+        frontier = nxt
+    return False
+
+
+@functools.lru_cache(maxsize=8)
+def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """The motion primitives for a robot and a lattice resolution (module docstring).
+
+    Computed once per ``(L, max_steer, resolution)`` and kept (least-recently-used cache
+    of 8 sets: :func:`primitive_set.cache_clear` empties it).
+
+    Parameters
+    ----------
+    L : float
+        Robot length (> 0).
+    max_steer : float
+        Steering limit, radians in ``(0, pi/2)``.
+    resolution : float
+        Cell size of the lattice (m, > 0, at most ``L``).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument.
+    """
+    for name, v in (("L", L), ("resolution", resolution)):
+        if isinstance(v, bool) or not isinstance(v, int | float) or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    if not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
+        raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
+    if resolution > L:
+        raise ValueError(f"resolution must be at most L={L} (a turn needs several cells), got {resolution!r}")
+    L, r = float(L), float(resolution)
+    kmax = math.tan(max_steer) / L
+    R = 1.0 / kmax
+    bound = max_reach(L, max_steer, r)
+    base: list[list[Primitive]] = [[] for _ in range(4)]
+    for h0 in range(4):  # the straight unit step
+        i, j = HEADING_VECTORS[h0]
+        d = math.hypot(i, j) * r
+        base[h0].append(_make(h0, h0, i, j, r, L, 0.0, d, 0.0, 0.0))
+    cands = []
+    for h0 in range(4):
+        I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
+        a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6))
+        ok = np.isfinite(a)
+        est = longd_gauss_intrinsic(d[ok], phi0[ok], phi1[ok], a[ok], L)
+        for row in zip(est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok], strict=True):
+            e, i, j, h1, al, dd, p0, p1 = (float(v) for v in row)
+            cands.append((e, h0, int(h1), int(i), int(j), al, dd, p0, p1))
+    cands.sort()
+
+    def all_headings(b):
+        return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
+
+    kept = all_headings(base)
+    per: dict = {}
+    for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
+        key = (h0, (h1 - h0) % NH)
+        if per.get(key, 0) >= PER_TURN:
+            continue
+        if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE)):
+            continue
+        p = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
+        if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
+            continue
+        base[h0].append(p)
+        per[key] = per.get(key, 0) + 1
+        kept = all_headings(base)
+    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in kept))
