@@ -9,6 +9,11 @@ search. This module adds what those comparisons need and the planner does not co
   Romberg integration;
 - :func:`run_searches`: one scenario, several search settings, one record each (a plan's
   cost and effort, or why no plan was found);
+- :func:`relative_changes`, :func:`best_change`, :func:`versus_baseline` and
+  :func:`improvement_criterion`: the method's plans against those of the paper's baseline,
+  "a search algorithm where the cost function is based upon the distance between points",
+  and the one criterion by which chapters 6 and 7 judge "the improvement [...] clearly
+  seen" (:data:`CLEAR_IMPROVEMENT`; changes within :data:`EQUAL_WITHIN` count as equal);
 - :func:`shortest_point_path` and :func:`point_lower_bounds`: a lower bound on any
   plan's cost. The whole segment A-B stays clear of the enlarged obstacles and strictly
   inside the walls shrunk by the half-width, so the front wheel B travels from the
@@ -34,14 +39,30 @@ from ..path import NoPathError, Plan
 from ..romberg import romberg
 from ..union import Union
 from ..world import Scenario
+from .verdicts import Criterion
 
 __all__ = [
+    "CLEAR_IMPROVEMENT",
+    "EQUAL_WITHIN",
+    "best_change",
+    "improvement_criterion",
     "plan_rear_length",
     "point_lower_bounds",
     "rear_length",
+    "relative_changes",
     "run_searches",
     "shortest_point_path",
+    "versus_baseline",
 ]
+
+#: Relative LONGD changes within this fraction (0.1 %) count as equal: two searches that
+#: return the same route differ by no more than the integration tolerance of [1].
+EQUAL_WITHIN = 1e-3
+
+#: A relative LONGD change at most this (-1 %) is an improvement "clearly seen" (Results,
+#: Figs. 5 and 6): a front-wheel path shorter by a hundredth, the smallest difference a
+#: reader would see in a drawn plan of tens of metres.
+CLEAR_IMPROVEMENT = -0.01
 
 
 # -- lengths of a plan --------------------------------------------------------------------
@@ -142,6 +163,144 @@ def run_searches(scenario: Scenario, searches: Mapping[str, Mapping], **common) 
             }
         )
     return records
+
+
+# -- the method against the paper's baseline --------------------------------------------------
+def _cost_table(cost, baseline: str):
+    import pandas as pd
+
+    if not isinstance(cost, pd.DataFrame):
+        raise ValueError(
+            f"cost must be a pandas DataFrame (one column per search), got {type(cost).__name__}"
+        )
+    if baseline not in cost.columns:
+        raise ValueError(
+            f"baseline must be a column of cost, got {baseline!r} (columns {list(cost.columns)})"
+        )
+    if len(cost.columns) < 2:
+        raise ValueError("cost must hold the baseline and at least one other search")
+    table = cost.astype(float)
+    if (table <= 0.0).to_numpy().any():
+        raise ValueError("cost must hold positive LONGD values (NaN where no plan was found)")
+    return table.dropna()
+
+
+def relative_changes(cost, baseline: str):
+    """Relative change of each search's LONGD against the baseline's, case by case.
+
+    ``(LONGD - LONGD of the baseline) / LONGD of the baseline``: negative where the search
+    drives the shorter front-wheel path (formula [1]).
+
+    Parameters
+    ----------
+    cost : pandas.DataFrame
+        One row per case (a figure, a world), one column per search, LONGD in metres; NaN
+        where a search found no plan. Rows with a NaN are left out.
+    baseline : str
+        The column of the baseline search.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The columns of ``cost`` but the baseline, on the rows every search solved.
+
+    Raises
+    ------
+    ValueError
+        If ``cost`` is not a DataFrame with ``baseline`` and another column, or holds a
+        LONGD that is not positive.
+    """
+    table = _cost_table(cost, baseline)
+    return table.drop(columns=baseline).div(table[baseline], axis=0) - 1.0
+
+
+def best_change(cost, baseline: str):
+    """The best (most negative) relative LONGD change of any search against the baseline, per case.
+
+    The quantity of :func:`improvement_criterion`: does any of the method's searches (its
+    choices of ``h'``) drive a clearly shorter front-wheel path than the baseline?
+
+    Parameters and errors as :func:`relative_changes`; returns a pandas Series, one value
+    per case every search solved.
+    """
+    return relative_changes(cost, baseline).min(axis=1).rename("best change")
+
+
+def versus_baseline(cost, baseline: str, tol: float = EQUAL_WITHIN):
+    """Each search against the baseline over the cases every search solved.
+
+    Parameters
+    ----------
+    cost, baseline
+        As :func:`relative_changes`.
+    tol : float
+        Changes within ``+-tol`` count as equal (default :data:`EQUAL_WITHIN`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per search (the columns of ``cost`` but the baseline): ``cases``, ``better``
+        (change below ``-tol``), ``equal``, ``worse`` (above ``tol``), ``mean change``,
+        ``best`` (the most negative change, 0 if none is negative) and ``worst`` (the
+        largest, 0 if none is positive), the last three as fractions.
+
+    Raises
+    ------
+    ValueError
+        As :func:`relative_changes`, or ``tol`` not in [0, 1).
+    """
+    import pandas as pd
+
+    if isinstance(tol, bool) or not isinstance(tol, int | float) or not 0.0 <= tol < 1.0:
+        raise ValueError(f"tol must be a number in [0, 1), got {tol!r}")
+    change = relative_changes(cost, baseline)
+    rows = {
+        search: {
+            "cases": len(c),
+            "better": int((c < -tol).sum()),
+            "equal": int((c.abs() <= tol).sum()),
+            "worse": int((c > tol).sum()),
+            "mean change": float(c.mean()) if len(c) else math.nan,
+            "best": min(float(c.min()), 0.0) if len(c) else math.nan,
+            "worst": max(float(c.max()), 0.0) if len(c) else math.nan,
+        }
+        for search, c in change.items()
+    }
+    table = pd.DataFrame.from_dict(rows, orient="index")
+    table.index.name = "search"
+    return table
+
+
+def improvement_criterion(where: str) -> Criterion:
+    """The criterion for "the improvement [...] versus a search [by] distance [...] clearly seen".
+
+    Reproduced when the best relative LONGD change of a LONGD search against the distance
+    baseline (:func:`best_change`) is at most :data:`CLEAR_IMPROVEMENT` (-1 %); partly
+    reproduced when it is at most ``-EQUAL_WITHIN`` (better, but by less than 1 %); not
+    reproduced when no LONGD search is better than the baseline by more than the 0.1 %
+    that counts as equal. A chapter judges each case (each figure, each family of worlds)
+    with it and requires all (:func:`segplan.studies.verdicts.worst`).
+
+    Parameters
+    ----------
+    where : str
+        The case the value comes from, appended to the quantity ("Fig. 5", "mean over the
+        forward worlds").
+
+    Raises
+    ------
+    ValueError
+        If ``where`` is not a non-empty string.
+    """
+    if not isinstance(where, str) or not where.strip():
+        raise ValueError(f"where must be a non-empty string, got {where!r}")
+    return Criterion(
+        f"best relative LONGD change of a LONGD search against the distance baseline, {where}",
+        "<=",
+        CLEAR_IMPROVEMENT,
+        partly=-EQUAL_WITHIN,
+        fmt="{:+.2%}",
+    )
 
 
 # -- shortest path of a point among convex polygons ------------------------------------------
