@@ -133,7 +133,7 @@ def load(name):
 @pytest.mark.parametrize("name", ["fig5_example1", "fig6_example2", "turn_around", "narrow_passage"])
 def test_every_accepted_move_lowers_the_cost(name):
     sc = load(name)
-    found = plan_scenario(sc)
+    found = plan_scenario(sc, planner="paper")
     with watching_the_refiner() as log:
         refined = refine(found, sc, rounds=2)
     polishes = [entry for entry in log if entry[0] == "polish"]
@@ -155,7 +155,7 @@ def test_moves_are_exercised_and_checked_on_random_worlds():
     total = 0
     for seed in (2, 3, 7):
         sc = random_world(seed, 8)
-        found = plan_scenario(sc)
+        found = plan_scenario(sc, planner="paper")
         with watching_the_refiner() as log:
             refined = refine(found, sc)
         for step, before, after, accepted, gain in log:
@@ -170,7 +170,7 @@ def test_moves_are_exercised_and_checked_on_random_worlds():
 def test_nothing_to_improve_returns_the_input():
     """A single straight union: no shortcut, no split, no node to move; the plan is unchanged."""
     sc = make_scenario(Robot(1.0), (0.0, 0.0, 0.0), (2.5, 0.0, 0.0), [], None)
-    found = plan_scenario(sc)
+    found = plan_scenario(sc, planner="paper")
     refined = refine(found, sc)
     assert refined.nodes == found.nodes and refined.unions == found.unions
     assert refined.cost == found.cost
@@ -182,7 +182,7 @@ def test_nothing_to_improve_returns_the_input():
 def test_never_longer_guard_against_an_objective_that_rewards_length(name):
     """The refiner made to prefer longer chains: the guard must hand back the input's chain."""
     sc = load(name)
-    found = plan_scenario(sc)
+    found = plan_scenario(sc, planner="paper")
     with length_rewarded():
         refined = refine(found, sc)
     assert refined.cost == found.cost
@@ -266,7 +266,7 @@ REFINED = {
 @pytest.mark.parametrize("name", NAMES)
 def test_shipped_refinements_pinned(name):
     sc = load(name)
-    refined = refine(plan_scenario(sc), sc)
+    refined = refine(plan_scenario(sc, planner="paper"), sc)
     cost, nodes, shortcuts, splits, moves = REFINED[name]
     info = refined.refinement
     assert refined.cost == pytest.approx(cost, rel=1e-6)

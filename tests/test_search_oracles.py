@@ -36,8 +36,8 @@ NAMES = sorted(p.stem for p in SCENARIOS.glob("*.json"))
 
 # -- the reaches into internals ----------------------------------------------------------
 def paper_search(scenario, **kwargs):
-    """The paper's A* search (today the default of ``plan_scenario``)."""
-    return plan_scenario(scenario, **kwargs)
+    """The paper's A* search (``planner="paper"``; the default planner is the lattice)."""
+    return plan_scenario(scenario, planner="paper", **kwargs)
 
 
 @contextmanager
