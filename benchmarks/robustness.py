@@ -37,6 +37,7 @@ from __future__ import annotations
 import argparse
 import datetime
 import gzip
+import inspect
 import json
 import math
 import os
@@ -44,13 +45,16 @@ import platform
 import statistics
 import subprocess
 import sys
-from collections.abc import Callable, Sequence
+import time
+from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+import segplan
+from segplan.metrics import measure_scenario_path, plan_poses
 from segplan.studies import floors as fl
 from segplan.world import Scenario
 
@@ -336,6 +340,286 @@ def run_ompl(
     return read_ompl(out)
 
 
+# -- segplan side ---------------------------------------------------------------------------
+def segplan_options(planner: str | None = None, refine: bool | None = None) -> dict:
+    """Keyword arguments of :func:`segplan.plan_scenario` for a variant of segplan.
+
+    ``planner`` is passed only if given, and only where :func:`segplan.plan_scenario`
+    has that argument (ValueError otherwise); ``refine`` only if given. ``{}`` is the
+    default planner, whatever it is.
+    """
+    params = inspect.signature(segplan.plan_scenario).parameters
+    kw: dict = {}
+    if planner is not None:
+        if "planner" not in params:
+            raise ValueError(f"planner={planner!r}: this segplan's plan_scenario has no planner argument")
+        kw["planner"] = planner
+    if refine is not None:
+        if not isinstance(refine, bool):
+            raise ValueError(f"refine must be True, False or None, got {refine!r}")
+        kw["refine"] = refine
+    return kw
+
+
+def variant_label(options: dict) -> str:
+    """A short name of a variant: ``"default"``, ``"planner=paper +refine"``, ..."""
+    if not options:
+        return "default"
+    parts = [f"planner={options['planner']}"] if "planner" in options else []
+    if "refine" in options:
+        parts.append("+refine" if options["refine"] else "-refine")
+    return " ".join(parts)
+
+
+def warm_up(options: dict | None = None) -> float:
+    """The process's one-time set-up of segplan (s), excluded from the times like OMPL's
+    library load: one plan on a small floor (:func:`peers.warm_up`) and one with ``options``."""
+    t0 = time.perf_counter()
+    peers.warm_up()
+    try:
+        segplan.plan_scenario(fl.random_floor("natural", 0), **(options or {}))
+    except segplan.NoPathError:
+        pass
+    return time.perf_counter() - t0
+
+
+SEGPLAN_COLUMNS = (
+    "group",
+    "floor",
+    "floor_key",
+    "variant",
+    "solved",
+    "reason",
+    "valid",
+    "seconds",
+    "plan_seconds",
+    "cpu_seconds",
+    "front_length",
+    "plan_cost",
+    "clearance",
+    "nodes",
+    "obstacles",
+    "area",
+)
+
+
+def solve_segplan(scenario: Scenario, group: str = "", options: dict | None = None, step: float = peers.STEP):
+    """segplan on one floor: its row (:data:`SEGPLAN_COLUMNS`) and the plan (or None).
+
+    ``seconds`` is the wall time of the :func:`segplan.plan_scenario` call (search and,
+    if the variant refines, refinement; the first plan on this floor in a warm process,
+    see :func:`warm_up`); ``plan_seconds`` the planner's own ``Plan.seconds`` (or the
+    ``NoPathError``'s); ``cpu_seconds`` the CPU time of the call (on a busy machine the
+    wall time exceeds it by the time other processes had the core). The plan is sampled
+    every ``step`` m and measured by
+    :func:`segplan.metrics.measure_scenario_path`: ``valid`` is the dense oracle's
+    verdict, ``front_length`` the measured front-wheel length (``plan_cost``: the plan's
+    own LONGD).
+    """
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    options = dict(options or {})
+    xmin, ymin, xmax, ymax = scenario.bounds
+    row = {
+        "group": group,
+        "floor": scenario.name,
+        "floor_key": fl.floor_key(scenario),
+        "variant": variant_label(options),
+        "obstacles": len(scenario.obstacles),
+        "area": (xmax - xmin) * (ymax - ymin),
+    }
+    t0, c0 = time.perf_counter(), time.process_time()
+    try:
+        plan = segplan.plan_scenario(scenario, **options)
+    except segplan.NoPathError as exc:
+        row.update(solved=False, reason=exc.reason, valid=False, seconds=time.perf_counter() - t0)
+        row["cpu_seconds"] = time.process_time() - c0
+        row.update(
+            plan_seconds=exc.seconds, front_length=math.nan, plan_cost=math.nan, clearance=math.nan, nodes=0
+        )
+        return row, None
+    seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+    m = measure_scenario_path(plan_poses(plan, step), scenario)
+    row.update(solved=True, reason="", valid=not m.collides, seconds=seconds, plan_seconds=plan.seconds)
+    row["cpu_seconds"] = cpu
+    row.update(front_length=m.front_length, plan_cost=plan.cost, clearance=m.clearance, nodes=len(plan.nodes))
+    return row, plan
+
+
+def run_segplan(
+    scenarios: Iterable[tuple[str, Scenario]],
+    options: dict | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> tuple[pd.DataFrame, dict]:
+    """:func:`solve_segplan` on every ``(group, scenario)``: the table and the plans by floor name."""
+    rows, plans = [], {}
+    for group, sc in scenarios:
+        row, plan = solve_segplan(sc, group, options)
+        rows.append(row)
+        plans[sc.name] = plan
+        if progress:
+            progress(f"{sc.name}: solved={row['solved']} {1e3 * row['seconds']:.1f} ms")
+    return pd.DataFrame(rows, columns=list(SEGPLAN_COLUMNS)), plans
+
+
+# -- comparison and targets -------------------------------------------------------------------
+def reference(ompl: pd.DataFrame) -> pd.DataFrame:
+    """Per floor, from the stored OMPL runs: ``ompl_runs``, ``ompl_solved`` (some run found
+    a valid path: the feasibility oracle), ``ompl_front`` (the shortest valid front-wheel
+    length at :data:`REFERENCE_BUDGET`, over planners and seeds), ``ompl_planner``, and
+    ``bit2_solved`` / ``bit5_solved`` (runs of BIT* at 2 / 5 s that found a valid path)."""
+    if ompl.empty:
+        return pd.DataFrame(columns=["floor", "ompl_runs", "ompl_solved", "ompl_front", "ompl_planner"])
+    t = ompl.copy()
+    t["valid"] = t["valid"].astype(bool)
+    rows = []
+    for name, runs in t.groupby("floor", sort=False):
+        ok = runs[runs["valid"]]
+        ref = ok[ok["budget"] == REFERENCE_BUDGET]
+        best = ref.loc[ref["front_length"].idxmin()] if len(ref) else None
+        bit = ok[ok["planner"] == "BITstar"]
+        rows.append(
+            {
+                "floor": name,
+                "ompl_key": runs["floor_key"].iloc[0],
+                "ompl_runs": len(runs),
+                "ompl_solved": bool(len(ok)),
+                "ompl_front": math.nan if best is None else float(best["front_length"]),
+                "ompl_planner": "" if best is None else str(best["planner"]),
+                "bit2_solved": int((bit["budget"] == 2.0).sum()),
+                "bit5_solved": int((bit["budget"] == 5.0).sum()),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def compare(seg: pd.DataFrame, ompl: pd.DataFrame) -> pd.DataFrame:
+    """segplan's rows with the OMPL reference of their floor and ``ratio`` (segplan's
+    front-wheel length over :func:`reference`'s ``ompl_front``; NaN unless both have a
+    valid path). Raises ValueError if a floor's stored OMPL runs were made on another floor
+    (``floor_key``)."""
+    out = seg.merge(reference(ompl), on="floor", how="left")
+    stale = out["ompl_key"].notna() & (out["ompl_key"] != out["floor_key"])
+    if stale.any():
+        raise ValueError(f"ompl: stored runs of {list(out.loc[stale, 'floor'])} were made on other floors")
+    out["ompl_solved"] = out["ompl_solved"].fillna(False).astype(bool)
+    ok = out["solved"].astype(bool) & out["valid"].astype(bool)
+    out["ratio"] = np.where(ok, out["front_length"] / out["ompl_front"], math.nan)
+    return out
+
+
+def _verdict(value: float, limit: float, at_most: bool = True) -> str:
+    if not math.isfinite(value):
+        return "not measured"
+    return "met" if (value <= limit if at_most else value >= limit) else "missed"
+
+
+def verdicts(table: pd.DataFrame) -> pd.DataFrame:
+    """Each target of issue 12 from :func:`compare`'s table: ``target``, ``criterion``,
+    ``measured``, ``value``, ``verdict`` (met / missed / not measured, from the value and
+    the criterion) and ``timed`` (the value is a time, so it varies from run to run)."""
+    rows = []
+    random = table[table["group"].isin(fl.KINDS)]
+    good = table["solved"].astype(bool) & table["valid"].astype(bool)
+    for kind in fl.KINDS:
+        t = table[(table["group"] == kind) & table["ompl_solved"]]
+        n_ok = int(good[t.index].sum())
+        rate = n_ok / len(t) if len(t) else math.nan
+        rows.append(
+            {
+                "target": f"success, {kind} headings",
+                "criterion": f">= {100 * TARGET_SUCCESS:g} % of the floors OMPL solves",
+                "measured": f"{n_ok} of {len(t)} ({100 * rate:.1f} %)" if len(t) else "no OMPL results",
+                "value": rate,
+                "verdict": _verdict(rate, TARGET_SUCCESS, at_most=False),
+            }
+        )
+    solved = table[table["solved"].astype(bool)]
+    bad = int((~solved["valid"].astype(bool)).sum())
+    rows.append(
+        {
+            "target": "invalid plans",
+            "criterion": "0 (dense oracle, every floor)",
+            "measured": f"{bad} of {len(solved)} plans",
+            "value": float(bad),
+            "verdict": _verdict(bad, 0),
+        }
+    )
+    ms = 1e3 * random["seconds"]
+    for label, q, limit in (("median", 0.5, TARGET_MEDIAN_MS), ("95th percentile", 0.95, TARGET_P95_MS)):
+        v = float(ms.quantile(q)) if len(ms) else math.nan
+        rows.append(
+            {
+                "target": f"plan time, {label}",
+                "criterion": f"<= {limit:g} ms (random floors, every call)",
+                "measured": f"{v:.1f} ms",
+                "value": v,
+                "verdict": _verdict(v, limit),
+            }
+        )
+    r = random["ratio"].dropna()
+    for label, v, limit in (
+        ("median", float(r.median()) if len(r) else math.nan, TARGET_RATIO_MEDIAN),
+        ("worst", float(r.max()) if len(r) else math.nan, TARGET_RATIO_WORST),
+    ):
+        rows.append(
+            {
+                "target": f"front-wheel length / BIT* 5 s, {label}",
+                "criterion": f"<= {limit:.2f} (random floors both solve: {len(r)})",
+                "measured": f"{v:.3f}",
+                "value": v,
+                "verdict": _verdict(v, limit),
+            }
+        )
+    ta = table[table["floor"] == "turn_around"]
+    v = float(ta["ratio"].iloc[0]) if len(ta) else math.nan
+    rows.append(
+        {
+            "target": "turn_around / best OMPL at 5 s",
+            "criterion": f"<= {TARGET_TURN_AROUND:.2f}",
+            "measured": f"{v:.3f}" if math.isfinite(v) else "no plan or no OMPL result",
+            "value": v,
+            "verdict": _verdict(v, TARGET_TURN_AROUND),
+        }
+    )
+    large = table[table["group"] == "large"]
+    v = float(large["seconds"].median()) if len(large) else math.nan
+    n_ok = int(good[large.index].sum())
+    rows.append(
+        {
+            "target": "160 x 96 m, 512 obstacles: plan time median",
+            "criterion": f"<= {TARGET_LARGE_S:g} s",
+            "measured": f"{v:.2f} s ({n_ok} of {len(large)} crossings solved)",
+            "value": v,
+            "verdict": _verdict(v, TARGET_LARGE_S),
+        }
+    )
+    enc = table[table["floor"].str.startswith("enclosed")]
+    v = float(enc["seconds"].max()) if len(enc) else math.nan
+    wrong = int(enc["solved"].astype(bool).sum())
+    rows.append(
+        {
+            "target": "enclosed goal: NoPathError",
+            "criterion": f"no plan, within {TARGET_ENCLOSED_S:g} s",
+            "measured": f"slowest {v:.2f} s; {wrong} of {len(enc)} returned a plan",
+            "value": v,
+            "verdict": "missed" if wrong else _verdict(v, TARGET_ENCLOSED_S),
+        }
+    )
+    out = pd.DataFrame(rows)
+    out["timed"] = out["target"].str.contains("time") | out["target"].str.startswith("enclosed")
+    return out
+
+
+def loglog_slope(x: Sequence[float], y: Sequence[float]) -> float:
+    """Least-squares slope of ``log y`` against ``log x`` (the exponent of a power law)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 2:
+        return math.nan
+    return float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
+
+
 # -- command line -------------------------------------------------------------------------
 def main(argv: Sequence[str] | None = None) -> int:
     """``python benchmarks/robustness.py [--ompl] [--quick] [--out CSV] [...]``."""
@@ -367,6 +651,22 @@ def main(argv: Sequence[str] | None = None) -> int:
             say(f"OMPL quick: {int(t['solved'].sum())} of {len(t)} solved")
         else:
             run_ompl(ompl_jobs(groups), args.ompl_csv, workers=args.jobs, progress=say)
+    if args.no_segplan:
+        return 0
+    options = segplan_options(args.planner, True if args.refine else None)
+    say(f"segplan {variant_label(options)}: one-time set-up {warm_up(options):.2f} s")
+    floors = [(g, sc) for g, scs in groups.items() for sc in scs]
+    if not args.quick:
+        floors += [("sweep", sc) for sc in sweep_floors()]
+    seg, _ = run_segplan(floors, options)
+    table = compare(seg, read_ompl(args.ompl_csv))
+    with pd.option_context("display.width", 200, "display.max_columns", 20, "display.precision", 3):
+        print(table.groupby("group")[["solved", "valid", "ompl_solved"]].sum().to_string())
+        print(verdicts(table)[["target", "criterion", "measured", "verdict"]].to_string(index=False))
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        table.to_csv(args.out, index=False)
+        say(f"wrote {args.out}")
     return 0
 
 
