@@ -280,7 +280,7 @@ def sweep_floor(scale: float, n_obstacles: int | None = None, index: int = 0) ->
 
 
 def large_floor(index: int) -> Scenario:
-    """Crossing ``index`` of a 160 x 96 m floor with 512 obstacles (:func:`sweep_floor` at scale 8)."""
+    """Large floor ``index``: 160 x 96 m, 512 obstacles, crossed left to right (:func:`sweep_floor`)."""
     return sweep_floor(8.0, 512, index)
 
 
