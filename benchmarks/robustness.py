@@ -461,7 +461,11 @@ def run_segplan(
         rows.append(row)
         plans[sc.name] = plan
         if progress:
-            progress(f"{sc.name}: solved={row['solved']} {1e3 * row['seconds']:.1f} ms")
+            progress(
+                f"{group} {sc.name}: solved={row['solved']} valid={row['valid']} {row['reason']} "
+                f"front={row['front_length']:.3f} {1e3 * row['seconds']:.1f} ms "
+                f"(CPU {1e3 * row['cpu_seconds']:.1f} ms)"
+            )
     return pd.DataFrame(rows, columns=list(SEGPLAN_COLUMNS)), plans
 
 
@@ -661,7 +665,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     floors = [(g, sc) for g, scs in groups.items() for sc in scs]
     if not args.quick:
         floors += [("sweep", sc) for sc in sweep_floors()]
-    seg, _ = run_segplan(floors, options)
+    seg, _ = run_segplan(floors, options, progress=say)
     table = compare(seg, read_ompl(args.ompl_csv))
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.precision", 3):
         print(table.groupby("group")[["solved", "valid", "ompl_solved"]].sum().to_string())
