@@ -1,0 +1,233 @@
+"""The robustness study (issue 12): its floors, the stored OMPL results, the script.
+
+- segplan.studies.floors: deterministic floors that keep the stated rules (room, obstacle
+  count and shapes, free start and goal 6 m apart, heading kinds), hard cases as described;
+- benchmarks/results/robustness_ompl.csv covers every floor x planner x budget x seed that
+  benchmarks/robustness.py defines, each on the floor the generator makes today
+  (floor_key), with a provenance record;
+- the comparison and the verdicts judge by the stated criteria (synthetic tables);
+- ``benchmarks/robustness.py --quick`` runs (its OMPL part only where ompl is installed).
+"""
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import shapely
+
+import segplan
+from segplan.studies import floors as fl
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from benchmarks import robustness as rb  # noqa: E402
+
+
+# -- the floors ---------------------------------------------------------------------------
+@pytest.mark.parametrize("kind", fl.KINDS)
+def test_random_floors_keep_the_rules(kind):
+    for i in range(0, fl.N_FLOORS, 7):
+        sc = fl.random_floor(kind, i)
+        assert sc.name == f"{kind}-{i:03d}"
+        assert sc.bounds == fl.SMALL_BOUNDS
+        assert sc.robot == fl.ROBOT and sc.robot.min_turning_radius == pytest.approx(1.0)
+        assert 4 <= len(sc.obstacles) <= 9
+        polys = [shapely.Polygon(p) for p in sc.obstacles]
+        room = shapely.box(*fl.SMALL_BOUNDS)
+        for j, p in enumerate(polys):
+            assert room.contains(p)
+            assert (
+                len(sc.obstacles[j]) == 4
+                or np.ptp(np.hypot(*(sc.obstacles[j] - p.centroid.coords[0]).T)) < 1e-5
+            )
+            assert not any(p.intersects(q) for q in polys[j + 1 :])
+        assert sc.is_free(sc.start) and sc.is_free(sc.goal)
+        d = math.dist(sc.start[:2], sc.goal[:2])
+        assert d >= fl.MIN_DISTANCE
+        if kind == "natural":
+            direction = math.atan2(sc.goal.y - sc.start.y, sc.goal.x - sc.start.x)
+            for p in (sc.start, sc.goal):
+                off = (p.theta - direction + math.pi) % (2 * math.pi) - math.pi
+                assert abs(off) <= fl.NATURAL_SPREAD + 1e-6
+
+
+def test_any_headings_cover_the_circle():
+    th = np.array([fl.random_floor("any", i).start.theta for i in range(fl.N_FLOORS)])
+    assert np.histogram(th, bins=4, range=(-math.pi, math.pi))[0].min() >= 30
+
+
+def test_floors_are_deterministic_and_keyed():
+    a, b = fl.random_floor("any", 5), fl.random_floor("any", 5)
+    assert a.to_json() == b.to_json() and fl.floor_key(a) == fl.floor_key(b)
+    assert fl.floor_key(a) != fl.floor_key(fl.random_floor("any", 6))
+    with pytest.raises(ValueError, match="kind"):
+        fl.random_floor("sideways", 0)
+    with pytest.raises(ValueError, match="index"):
+        fl.random_floor("any", fl.N_FLOORS)
+    with pytest.raises(ValueError, match="scale"):
+        fl.sweep_floor(0.5)
+    with pytest.raises(ValueError, match="scenario"):
+        fl.floor_key("any-000")
+
+
+def test_sweep_and_large_floors():
+    sc = fl.sweep_floor(2.0, None, 1)
+    assert sc.bounds == (0.0, 0.0, 40.0, 24.0) and len(sc.obstacles) == 32
+    assert sc.start.x < 0.1 * 40 + 0.3 and sc.goal.x > 0.9 * 39.4
+    large = fl.large_floor(0)
+    assert large.bounds == fl.LARGE_BOUNDS and len(large.obstacles) == 512
+    assert fl.floor_key(large) == fl.floor_key(fl.sweep_floor(8.0, 512, 0))
+
+
+def test_hard_cases_are_what_they_say():
+    cases = fl.hard_cases()
+    for name in ("wall_ahead_back", "wall_ahead_same", "wall_ahead_low"):
+        sc = cases[name]
+        assert sc.start.theta == 0.0
+        front = sc.start.x + sc.L
+        assert sc.free_bounds[2] - front == pytest.approx(0.5)  # 0.5 m from the (shrunk) wall
+        assert sc.goal.x < sc.start.x  # behind
+        # a circle of radius R = L turning left clears the wall by sqrt(2) L - L less than 0.5 m
+        assert 0.5 - (math.sqrt(2.0) - 1.0) * sc.L == pytest.approx(0.0858, abs=1e-3)
+    wall = cases["wall_obstacle"]
+    gap = wall.enlarged[0][:, 0].min() - (wall.start.x + wall.L)
+    assert 0.45 < gap <= 0.5 + 1e-9  # the enlargement's tangent edges sit within r of the wall
+    for name in ("enclosed_goal", "enclosed_slit"):
+        sc = cases[name]
+        ring = shapely.unary_union([shapely.Polygon(p) for p in sc.enlarged])
+        inside = shapely.Point(sc.goal.x, sc.goal.y)
+        holes = [shapely.Polygon(h) for g in getattr(ring, "geoms", [ring]) for h in g.interiors]
+        assert any(h.contains(inside) for h in holes), name  # the goal is cut off in the planning model
+    assert cases["turn_around"].robot.L == 1.2
+
+
+# -- the stored OMPL side -----------------------------------------------------------------
+def test_stored_ompl_csv_covers_every_run():
+    assert rb.OMPL_CSV.exists(), "benchmarks/results/robustness_ompl.csv missing: run robustness.py --ompl"
+    t = rb.read_ompl()
+    jobs = rb.ompl_jobs(rb.floor_groups())
+    want = {rb.job_id(j): fl.floor_key(j[1]) for j in jobs}
+    ids = [
+        f"{f}|{p}|{b:g}|{s}"
+        for f, p, b, s in zip(t["floor"], t["planner"], t["budget"], t["seed"], strict=True)
+    ]
+    assert len(ids) == len(set(ids)), "a run is stored twice"
+    have = dict(zip(ids, t["floor_key"], strict=True))
+    missing = sorted(set(want) - set(have))
+    assert not missing, f"{len(missing)} runs missing, e.g. {missing[:5]}"
+    assert not set(have) - set(want), "stored runs the study does not define"
+    stale = [k for k in want if have[k] != want[k]]
+    assert not stale, f"{len(stale)} runs were measured on other floors, e.g. {stale[:5]}"
+    assert set(t["generator"]) == {fl.GENERATOR_VERSION}
+    assert set(t["budget"]) == set(rb.BUDGETS)
+    assert t.loc[t["solved"], "front_length"].notna().all()
+    assert not (t["valid"] & ~t["solved"]).any()  # valid only if solved
+    prov = json.loads(rb.OMPL_PROVENANCE.read_text())
+    for key in ("budgets", "seeds", "generator_version", "sessions"):
+        assert key in prov
+    for s in prov["sessions"]:
+        for key in ("started", "machine", "load_average_start", "ompl", "commit", "command", "note"):
+            assert key in s
+        assert "other work" in s["note"]
+    assert prov["budgets"] == list(rb.BUDGETS) and prov["generator_version"] == fl.GENERATOR_VERSION
+
+
+# -- comparison and verdicts --------------------------------------------------------------
+def _tables(ratios, seconds, solved=True, valid=True):
+    n = len(ratios)
+    seg = pd.DataFrame(
+        {
+            "group": ["any"] * n,
+            "floor": [f"f{i}" for i in range(n)],
+            "floor_key": ["k"] * n,
+            "variant": "default",
+            "solved": solved,
+            "reason": "",
+            "valid": valid,
+            "seconds": seconds,
+            "front_length": ratios,
+        }
+    )
+    ompl = pd.DataFrame(
+        {
+            "floor": [f"f{i}" for i in range(n)],
+            "floor_key": "k",
+            "planner": "BITstar",
+            "budget": 5.0,
+            "seed": 1,
+            "solved": True,
+            "valid": True,
+            "front_length": 1.0,
+        }
+    )
+    return seg, ompl
+
+
+def test_verdicts_follow_the_criteria():
+    seg, ompl = _tables([0.9, 1.0, 1.1], [0.01, 0.02, 0.03])
+    v = rb.verdicts(rb.compare(seg, ompl)).set_index("target")
+    assert v.loc["success, any headings", "verdict"] == "met"
+    assert v.loc["success, natural headings", "verdict"] == "not measured"
+    assert v.loc["plan time, median", "value"] == pytest.approx(20.0)
+    assert v.loc["plan time, median", "verdict"] == "met"
+    assert v.loc["front-wheel length / BIT* 5 s, worst", "value"] == pytest.approx(1.1)
+    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "met"
+    seg, ompl = _tables([1.01, 1.2, 1.3], [0.1, 0.2, 0.4], valid=[True, True, False])
+    v = rb.verdicts(rb.compare(seg, ompl)).set_index("target")
+    assert v.loc["success, any headings", "verdict"] == "missed"  # 2 of 3
+    assert v.loc["invalid plans", "verdict"] == "missed"
+    assert v.loc["plan time, median", "verdict"] == "missed"
+    assert v.loc["front-wheel length / BIT* 5 s, worst", "value"] == pytest.approx(
+        1.2
+    )  # the invalid one has none
+    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "missed"
+
+
+def test_compare_refuses_results_of_other_floors():
+    seg, ompl = _tables([1.0], [0.01])
+    ompl["floor_key"] = "other"
+    with pytest.raises(ValueError, match="other floors"):
+        rb.compare(seg, ompl)
+
+
+def test_planner_option_is_guarded():
+    import inspect
+
+    has = "planner" in inspect.signature(segplan.plan_scenario).parameters
+    if not has:
+        with pytest.raises(ValueError, match="planner"):
+            rb.segplan_options("paper")
+    assert rb.segplan_options() == {} and rb.variant_label({}) == "default"
+    assert rb.variant_label(rb.segplan_options(refine=True)) == "+refine"
+    assert rb.loglog_slope([1, 10, 100], [2, 20, 200]) == pytest.approx(1.0)
+
+
+def test_solve_segplan_measures_a_plan():
+    sc = fl.random_floor("natural", 1)
+    row, plan = rb.solve_segplan(sc, "natural")
+    assert row["floor"] == sc.name and row["floor_key"] == fl.floor_key(sc)
+    if row["solved"]:
+        assert row["front_length"] == pytest.approx(plan.cost, rel=1e-4)
+        assert row["valid"]
+    else:
+        assert plan is None and row["reason"]
+
+
+def test_quick_run():
+    out = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "robustness.py"), "--quick"],
+        capture_output=True,
+        text=True,
+        timeout=900,
+        cwd=ROOT,
+    )
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert "invalid plans" in out.stdout and "success, any headings" in out.stdout
+    ompl = rb.peers.ompl_available()
+    assert ("OMPL quick:" in out.stderr) == ompl
+    assert ("skipping the OMPL side" in out.stderr) == (not ompl)
