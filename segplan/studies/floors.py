@@ -50,8 +50,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..collision import pose_collides, pose_in_bounds
-from ..world import Robot, Scenario, enlarge_polygon, load_scenario, make_scenario, polygons_overlap
+from ..geometry import enlarge_polygon, polygons_overlap, pose_collides, pose_in_bounds
+from ..world import Robot, Scenario, load_scenario, make_scenario
 
 __all__ = [
     "GENERATOR_VERSION",
