@@ -267,17 +267,29 @@ def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
     )
 
 
+def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
+    """``(h0, di, dj, h1, cost)`` of ``p`` and of its three quarter-turned copies (integers only)."""
+    out, di, dj = [], p.di, p.dj
+    for q in range(4):
+        out.append(((p.h0 + 4 * q) % NH, di, dj, (p.h1 + 4 * q) % NH, p.cost))
+        di, dj = -dj, di
+    return out
+
+
 def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) -> bool:
-    """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?"""
+    """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?
+
+    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``.
+    """
     frontier = [(0, 0, h0, 0.0)]
     for _ in range(depth):
         nxt = []
         for i, j, h, c in frontier:
-            for p in kept[h]:
-                c2 = c + p.cost
+            for di, dj, h1, cost in kept[h]:
+                c2 = c + cost
                 if c2 > budget:
                     continue
-                s = (i + p.di, j + p.dj, p.h1)
+                s = (i + di, j + dj, h1)
                 if s == target:
                     return True
                 nxt.append((*s, c2))
@@ -336,7 +348,15 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     def all_headings(b):
         return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
 
-    kept = all_headings(base)
+    kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
+
+    def keep(p: Primitive) -> None:
+        for h0_, di, dj, h1_, c in _steps(p):
+            kept[h0_].append((di, dj, h1_, c))
+
+    for b in base:
+        for p in b:
+            keep(p)
     per: dict = {}
     for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
         key = (h0, (h1 - h0) % NH)
@@ -349,5 +369,5 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
             continue
         base[h0].append(p)
         per[key] = per.get(key, 0) + 1
-        kept = all_headings(base)
-    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in kept))
+        keep(p)
+    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))
