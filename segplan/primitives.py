@@ -21,8 +21,12 @@ skipping one whose end state a chain of at most three kept primitives already re
 at no more than ``1 + PRUNE`` times its cost (the pruning of Pivtoraiko and Kelly's
 state lattices). The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg
 (exact in integers). A union's shape and cost do not change under a rigid motion, so the
-set is computed once per ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in
-an explicit least-recently-used cache) and reused by every plan.
+set is made once per ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in
+an explicit least-recently-used cache) and reused by every plan. The sets of the default
+lattice (45 deg steering, resolutions ``L / 8`` and ``L / 16``) are package data for a
+unit ``L`` (``primitives.npz``, written with its provenance by ``python -m segplan.fit``,
+which recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a
+fresh process does not spend seconds computing them.
 
 Every primitive also carries points of its swept segment (rear point A, front wheel B and
 points between them, at abscissae along the union) relative to its start, and ``delta``:
@@ -35,6 +39,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -43,7 +48,22 @@ from .frame import heuristic_alpha
 from .pose import alpha_interval, wrap
 from .union import Union, cubic_coefficients
 
-__all__ = ["HEADING_VECTORS", "Primitive", "PrimitiveSet", "heading_angles", "max_reach", "primitive_set"]
+__all__ = [
+    "DATA_PATH",
+    "FIELDS",
+    "HEADING_VECTORS",
+    "STORED_CELLS",
+    "STORED_STEER",
+    "Primitive",
+    "PrimitiveSet",
+    "compute_primitive_set",
+    "from_arrays",
+    "heading_angles",
+    "max_reach",
+    "primitive_arrays",
+    "primitive_set",
+    "stored_sets",
+]
 
 #: The 16 grid-aligned headings, as integer direction vectors (counter-clockwise from +x).
 HEADING_VECTORS = (
@@ -297,12 +317,26 @@ def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) 
     return False
 
 
+def _validate(L, max_steer, resolution) -> None:
+    for name, v in (("L", L), ("resolution", resolution)):
+        if isinstance(v, bool) or not isinstance(v, int | float) or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    if not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
+        raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
+    if resolution > L:
+        raise ValueError(f"resolution must be at most L={L} (a turn needs several cells), got {resolution!r}")
+
+
 @functools.lru_cache(maxsize=8)
 def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
     """The motion primitives for a robot and a lattice resolution (module docstring).
 
-    Computed once per ``(L, max_steer, resolution)`` and kept (least-recently-used cache
-    of 8 sets: :func:`primitive_set.cache_clear` empties it).
+    The default sets (:data:`STORED_STEER`, ``L / resolution`` in :data:`STORED_CELLS`)
+    are read from the package data (:data:`DATA_PATH`, written by ``python -m segplan.fit``)
+    and scaled by ``L``: a union's shape and LONGD scale with ``L`` and the steering test is
+    invariant under the scaling, so the set of any ``L`` is the unit set scaled. Other sets
+    are computed (:func:`compute_primitive_set`, about a second). Either way a set is kept
+    (least-recently-used cache of 8 sets: :func:`primitive_set.cache_clear` empties it).
 
     Parameters
     ----------
@@ -318,13 +352,73 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     ValueError
         Naming the argument.
     """
-    for name, v in (("L", L), ("resolution", resolution)):
-        if isinstance(v, bool) or not isinstance(v, int | float) or not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
-    if not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
-        raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
-    if resolution > L:
-        raise ValueError(f"resolution must be at most L={L} (a turn needs several cells), got {resolution!r}")
+    _validate(L, max_steer, resolution)
+    cells = float(L) / float(resolution)
+    if max_steer == STORED_STEER and DATA_PATH.exists():
+        for n in STORED_CELLS:
+            if abs(cells - n) <= 1e-12 * n:
+                return from_arrays(stored_sets()[n], float(L), float(max_steer), float(resolution))
+    return compute_primitive_set(L, max_steer, resolution)
+
+
+#: The package data of the default primitive sets (unit ``L``), written by ``python -m segplan.fit``.
+DATA_PATH = Path(__file__).with_name("primitives.npz")
+#: Steering limit of the stored sets (radians: 45 deg).
+STORED_STEER = math.radians(45.0)
+#: ``L / resolution`` of the stored sets: the lattice's default resolution and its retry.
+STORED_CELLS = (8, 16)
+#: The per-primitive scalar fields of :func:`primitive_arrays` (``points`` apart).
+FIELDS = ("h0", "h1", "di", "dj", "cost", "alpha", "d", "phi0", "phi1", "peak_curvature", "delta")
+_INT_FIELDS = ("h0", "h1", "di", "dj")
+_LENGTHS = ("cost", "d", "delta")  # scale with L (points too; peak_curvature with 1 / L)
+
+
+def primitive_arrays(ps: PrimitiveSet) -> dict[str, np.ndarray]:
+    """The primitives of headings 0..3 of ``ps`` as arrays (the others are quarter turns of them).
+
+    Keys :data:`FIELDS` (one entry per primitive) and ``points`` (primitives x samples x 2).
+    """
+    base = [p for h in range(4) for p in ps.by_heading[h]]
+    out = {
+        f: np.array([getattr(p, f) for p in base], dtype=np.int64 if f in _INT_FIELDS else float)
+        for f in FIELDS
+    }
+    out["points"] = np.stack([p.points for p in base])
+    return out
+
+
+def from_arrays(a: dict, L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """The :class:`PrimitiveSet` of a unit-``L`` set's arrays (:func:`primitive_arrays`), scaled to ``L``."""
+    scale = {f: L for f in _LENGTHS} | {"peak_curvature": 1.0 / L}
+    cols = [a[f].tolist() if f in _INT_FIELDS else (a[f] * scale.get(f, 1.0)).tolist() for f in FIELDS]
+    pts = a["points"] * L
+    base: list[list[Primitive]] = [[] for _ in range(4)]
+    for k, row in enumerate(zip(*cols, strict=True)):
+        kw = dict(zip(FIELDS, row, strict=True))
+        base[kw["h0"]].append(Primitive(**kw, points=np.ascontiguousarray(pts[k])))
+    kept = [[_rotate_quarter(p, h // 4) for p in base[h % 4]] for h in range(NH)]
+    return PrimitiveSet(L, max_steer, resolution, tuple(tuple(k) for k in kept))
+
+
+@functools.cache
+def stored_sets() -> dict[int, dict[str, np.ndarray]]:
+    """The stored unit-``L`` sets by ``L / resolution`` (read once per process), and their
+    provenance (key ``"provenance"``: a JSON string)."""
+    with np.load(DATA_PATH, allow_pickle=False) as z:
+        out: dict = {n: {k: z[f"{n}/{k}"] for k in (*FIELDS, "points")} for n in STORED_CELLS}
+        out["provenance"] = str(z["provenance"])
+    return out
+
+
+def compute_primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """:func:`primitive_set` computed, never read from the stored sets (module docstring).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument.
+    """
+    _validate(L, max_steer, resolution)
     L, r = float(L), float(resolution)
     kmax = math.tan(max_steer) / L
     R = 1.0 / kmax
