@@ -297,7 +297,8 @@ def _shortcut(plan, ex, grid, t0):
     A lattice plan has a node every few tenths of a metre; this keeps its shape with far
     fewer nodes, so the refinement (whose shortcut step is quadratic in the nodes) stays
     fast on long plans. Every new union keeps the steering limit and is free: screened on
-    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure.
+    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure, and
+    finally the certified test (the plan's own unions, kept, passed it already).
     """
     import dataclasses
 
@@ -306,6 +307,7 @@ def _shortcut(plan, ex, grid, t0):
         return plan
     cost = [ex.link_cost(u) for u in unions]
     out_n, out_u, out_k = [nodes[0]], [], [kinds[0]]
+    new = []  # the shortcut unions (not yet through the certified test)
     i = 0
     while i < len(unions):
         best = None
@@ -320,12 +322,14 @@ def _shortcut(plan, ex, grid, t0):
             best = (j, u)
             break
         j, u = best if best is not None else (i + 1, unions[i])
+        if best is not None:
+            new.append(u)
         out_n.append(nodes[j])
         out_u.append(u)
         out_k.append(kinds[j])
         i = j
     total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
-    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in out_u):  # the certified test
+    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in new):  # the certified test
         return plan
     return dataclasses.replace(
         plan, nodes=tuple(out_n), unions=tuple(out_u), kinds=tuple(out_k), cost=total,
