@@ -76,7 +76,7 @@ from .union import Union
 from .validity import Workspace
 from .world import Scenario
 
-__all__ = ["lattice_search", "plan_lattice"]
+__all__ = ["GOAL_RADIUS", "lattice_search", "plan_lattice"]
 
 _ANGLES = heading_angles()
 
@@ -337,6 +337,9 @@ def _shortcut(plan, ex, grid, t0):
     )  # fmt: skip
 
 
+#: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
+GOAL_RADIUS = (2.0, 1.0)
+
 #: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
 MAX_CELLS = 2.0e6
 
@@ -441,7 +444,9 @@ def plan_lattice(
         Far from the goal, try the direct union every this many expansions.
     goal_radius : float, optional
         Within this distance of the goal every expanded state tries the direct union;
-        default ``4 R + 2 L``.
+        default ``2 R + L`` (:data:`GOAL_RADIUS`: every state tried costs a union, its
+        steering check and LONGD; a wider radius mostly adds time, see
+        ``benchmarks/plan_speed.py``).
     cell : float, optional
         Cell size of the clearance grid (m; it must divide every resolution tried); by
         default half the finest resolution, not below ``L / 16``, coarser on large floors
@@ -544,7 +549,7 @@ def lattice_search(
             r,
             weight,
             analytic_every,
-            goal_radius if goal_radius is not None else 4.0 * R + 2.0 * L,
+            goal_radius if goal_radius is not None else GOAL_RADIUS[0] * R + GOAL_RADIUS[1] * L,
             banned,
         )
         if la != lb:
