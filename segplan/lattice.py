@@ -71,7 +71,7 @@ from .frame import heuristic_coefficients
 from .links import LinkModel
 from .path import NoPathError, Plan
 from .pose import Pose
-from .primitives import heading_angles, max_reach, primitive_set
+from .primitives import fine_points, heading_angles, max_reach, primitive_set
 from .union import Union
 from .validity import Workspace
 from .world import Scenario
@@ -104,6 +104,7 @@ class _LatticeSearch(GoalApproaches):
         gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
         self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
         self.offsets, self.delta, self.step, self.cost, self.points = [], [], [], [], []
+        self.fine = fine_points(ps)  # finer points for primitives close to obstacles
         for prims in ps.by_heading:
             pts = np.stack([p.points for p in prims])
             self.points.append(pts)
@@ -232,8 +233,9 @@ class _LatticeSearch(GoalApproaches):
                     continue  # the goal's region cannot be reached from there
                 if not free[m]:
                     P = P or self.pose(key)
-                    world = (self.points[h][m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
-                    if not self.certified(self.union(key, m, P), world, self.delta[h][m]):
+                    fp, fd = self.fine[h]
+                    world = (fp[m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
+                    if not self.certified(self.union(key, m, P), world, fd[m] + 1e-9):
                         continue
                 self.g[nk] = ng
                 self.parent[nk] = (key, m)

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import functools
 import math
+import weakref
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -57,6 +58,7 @@ __all__ = [
     "Primitive",
     "PrimitiveSet",
     "compute_primitive_set",
+    "fine_points",
     "from_arrays",
     "heading_angles",
     "max_reach",
@@ -80,7 +82,9 @@ PER_TURN = 3
 #: Abscissae (fractions of the frame span) and positions along the segment of the samples.
 SAMPLE_S = np.linspace(0.0, 1.0, 13)
 SAMPLE_T = np.linspace(0.0, 1.0, 7)
-_DENSE = np.linspace(0.0, 1.0, (len(SAMPLE_S) - 1) * 24 + 1)
+#: The finer samples of :func:`fine_points` (a tighter screen near obstacles).
+FINE_S = np.linspace(0.0, 1.0, 49)
+FINE_T = np.linspace(0.0, 1.0, 25)
 _STEER_ALPHAS = 15
 _PEAK_S = np.linspace(0.0, 1.0, 49)
 
@@ -256,24 +260,27 @@ def _best_alphas(d, phi0, phi1, lo, hi, L, kmax) -> np.ndarray:
     return a
 
 
-def _sample(u: Union, L: float) -> tuple[np.ndarray, float]:
-    """Swept-segment points of ``u`` relative to its start, and their covering radius ``delta``."""
-    x = u.x_end * SAMPLE_S
+def _sample(
+    u: Union, L: float, S: np.ndarray = SAMPLE_S, T: np.ndarray = SAMPLE_T
+) -> tuple[np.ndarray, float]:
+    """Swept-segment points of ``u`` relative to its start (abscissae ``S``, positions along
+    the segment ``T``, fractions), and their covering radius ``delta``."""
+    x = u.x_end * S
     A = u.to_world(x, u.f(x)) - np.array(u.p0[:2])
     h = u.heading(x)
     U = np.column_stack((np.cos(h), np.sin(h)))
-    pts = (A[:, None, :] + L * SAMPLE_T[None, :, None] * U[:, None, :]).reshape(-1, 2)
+    pts = (A[:, None, :] + L * T[None, :, None] * U[:, None, :]).reshape(-1, 2)
     # covering radius: half the longest move of A or B between consecutive abscissae (measured
     # along a dense sampling: path length, not chord) plus half the spacing along the segment
-    xd = u.x_end * _DENSE
+    per = 24
+    xd = u.x_end * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1)
     Ad = u.to_world(xd, u.f(xd))
     hd = u.heading(xd)
     Bd = Ad + L * np.column_stack((np.cos(hd), np.sin(hd)))
-    per = len(_DENSE) // (len(SAMPLE_S) - 1)
     la = np.hypot(*np.diff(Ad, axis=0).T)
     lb = np.hypot(*np.diff(Bd, axis=0).T)
     run = max(la.reshape(-1, per).sum(axis=1).max(), lb.reshape(-1, per).sum(axis=1).max())
-    delta = 0.5 * run * 1.02 + 0.5 * L * (SAMPLE_T[1] - SAMPLE_T[0])
+    delta = 0.5 * run * 1.02 + 0.5 * L * (T[1] - T[0])
     return pts, float(delta)
 
 
@@ -293,6 +300,41 @@ def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
     for q in range(4):
         out.append(((p.h0 + 4 * q) % NH, di, dj, (p.h1 + 4 * q) % NH, p.cost))
         di, dj = -dj, di
+    return out
+
+
+_FINE: dict[int, tuple] = {}  # id of a live set -> its fine points (dropped with the set)
+
+
+def fine_points(ps: PrimitiveSet) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Per heading ``h``: finer swept-segment points of the primitives ``ps.by_heading[h]``
+    (array ``(m, n, 2)``, relative to the start, lattice axes; :data:`FINE_S` x :data:`FINE_T`)
+    and their covering radii ``(m,)``, smaller than :attr:`Primitive.delta`.
+
+    A planner screens a primitive by these where its coarse points are not conclusive
+    (close to an obstacle), before the certified test. Computed once per set (kept while
+    the set lives).
+    """
+    out = _FINE.get(id(ps))
+    if out is None:
+        base = []
+        for h in range(4):
+            pts, dl = [], []
+            for p in ps.by_heading[h]:
+                u = p.union(0.0, 0.0, float(_ANGLES[h]), ps.resolution, ps.L)
+                q, d = _sample(u, ps.L, FINE_S, FINE_T)
+                pts.append(q)
+                dl.append(d)
+            base.append((np.stack(pts), np.array(dl)))
+        out = []
+        for h in range(NH):
+            pts, dl = base[h % 4]
+            for _ in range(h // 4):
+                pts = np.stack((-pts[..., 1], pts[..., 0]), axis=-1)
+            out.append((np.ascontiguousarray(pts), dl))
+        out = tuple(out)
+        _FINE[id(ps)] = out
+        weakref.finalize(ps, _FINE.pop, id(ps), None)
     return out
 
 
