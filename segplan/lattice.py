@@ -71,12 +71,12 @@ from .frame import heuristic_coefficients
 from .links import LinkModel
 from .path import NoPathError, Plan
 from .pose import Pose
-from .primitives import heading_angles, max_reach, primitive_set
+from .primitives import fine_points, heading_angles, max_reach, primitive_set
 from .union import Union
 from .validity import Workspace
 from .world import Scenario
 
-__all__ = ["lattice_search", "plan_lattice"]
+__all__ = ["GOAL_RADIUS", "lattice_search", "plan_lattice"]
 
 _ANGLES = heading_angles()
 
@@ -104,6 +104,7 @@ class _LatticeSearch(GoalApproaches):
         gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
         self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
         self.offsets, self.delta, self.step, self.cost, self.points = [], [], [], [], []
+        self.fine = fine_points(ps)  # finer points for primitives close to obstacles
         for prims in ps.by_heading:
             pts = np.stack([p.points for p in prims])
             self.points.append(pts)
@@ -232,8 +233,9 @@ class _LatticeSearch(GoalApproaches):
                     continue  # the goal's region cannot be reached from there
                 if not free[m]:
                     P = P or self.pose(key)
-                    world = (self.points[h][m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
-                    if not self.certified(self.union(key, m, P), world, self.delta[h][m]):
+                    fp, fd = self.fine[h]
+                    world = (fp[m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
+                    if not self.certified(self.union(key, m, P), world, fd[m] + 1e-9):
                         continue
                 self.g[nk] = ng
                 self.parent[nk] = (key, m)
@@ -297,7 +299,8 @@ def _shortcut(plan, ex, grid, t0):
     A lattice plan has a node every few tenths of a metre; this keeps its shape with far
     fewer nodes, so the refinement (whose shortcut step is quadratic in the nodes) stays
     fast on long plans. Every new union keeps the steering limit and is free: screened on
-    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure.
+    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure, and
+    finally the certified test (the plan's own unions, kept, passed it already).
     """
     import dataclasses
 
@@ -306,6 +309,7 @@ def _shortcut(plan, ex, grid, t0):
         return plan
     cost = [ex.link_cost(u) for u in unions]
     out_n, out_u, out_k = [nodes[0]], [], [kinds[0]]
+    new = []  # the shortcut unions (not yet through the certified test)
     i = 0
     while i < len(unions):
         best = None
@@ -320,18 +324,23 @@ def _shortcut(plan, ex, grid, t0):
             best = (j, u)
             break
         j, u = best if best is not None else (i + 1, unions[i])
+        if best is not None:
+            new.append(u)
         out_n.append(nodes[j])
         out_u.append(u)
         out_k.append(kinds[j])
         i = j
     total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
-    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in out_u):  # the certified test
+    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in new):  # the certified test
         return plan
     return dataclasses.replace(
         plan, nodes=tuple(out_n), unions=tuple(out_u), kinds=tuple(out_k), cost=total,
         seconds=time.perf_counter() - t0,
     )  # fmt: skip
 
+
+#: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
+GOAL_RADIUS = (2.0, 1.0)
 
 #: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
 MAX_CELLS = 2.0e6
@@ -437,7 +446,9 @@ def plan_lattice(
         Far from the goal, try the direct union every this many expansions.
     goal_radius : float, optional
         Within this distance of the goal every expanded state tries the direct union;
-        default ``4 R + 2 L``.
+        default ``2 R + L`` (:data:`GOAL_RADIUS`: every state tried costs a union, its
+        steering check and LONGD; a wider radius mostly adds time, see
+        ``benchmarks/plan_speed.py``).
     cell : float, optional
         Cell size of the clearance grid (m; it must divide every resolution tried); by
         default half the finest resolution, not below ``L / 16``, coarser on large floors
@@ -540,7 +551,7 @@ def lattice_search(
             r,
             weight,
             analytic_every,
-            goal_radius if goal_radius is not None else 4.0 * R + 2.0 * L,
+            goal_radius if goal_radius is not None else GOAL_RADIUS[0] * R + GOAL_RADIUS[1] * L,
             banned,
         )
         if la != lb:

@@ -21,8 +21,12 @@ skipping one whose end state a chain of at most three kept primitives already re
 at no more than ``1 + PRUNE`` times its cost (the pruning of Pivtoraiko and Kelly's
 state lattices). The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg
 (exact in integers). A union's shape and cost do not change under a rigid motion, so the
-set is computed once per ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in
-an explicit least-recently-used cache) and reused by every plan.
+set is made once per ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in
+an explicit least-recently-used cache) and reused by every plan. The sets of the default
+lattice (45 deg steering, resolutions ``L / 8`` and ``L / 16``) are package data for a
+unit ``L`` (``primitives.npz``, written with its provenance by ``python -m segplan.fit``,
+which recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a
+fresh process does not spend seconds computing them.
 
 Every primitive also carries points of its swept segment (rear point A, front wheel B and
 points between them, at abscissae along the union) relative to its start, and ``delta``:
@@ -34,7 +38,9 @@ from __future__ import annotations
 
 import functools
 import math
+import weakref
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -43,7 +49,23 @@ from .frame import heuristic_alpha
 from .pose import alpha_interval, wrap
 from .union import Union, cubic_coefficients
 
-__all__ = ["HEADING_VECTORS", "Primitive", "PrimitiveSet", "heading_angles", "max_reach", "primitive_set"]
+__all__ = [
+    "DATA_PATH",
+    "FIELDS",
+    "HEADING_VECTORS",
+    "STORED_CELLS",
+    "STORED_STEER",
+    "Primitive",
+    "PrimitiveSet",
+    "compute_primitive_set",
+    "fine_points",
+    "from_arrays",
+    "heading_angles",
+    "max_reach",
+    "primitive_arrays",
+    "primitive_set",
+    "stored_sets",
+]
 
 #: The 16 grid-aligned headings, as integer direction vectors (counter-clockwise from +x).
 HEADING_VECTORS = (
@@ -60,7 +82,9 @@ PER_TURN = 3
 #: Abscissae (fractions of the frame span) and positions along the segment of the samples.
 SAMPLE_S = np.linspace(0.0, 1.0, 13)
 SAMPLE_T = np.linspace(0.0, 1.0, 7)
-_DENSE = np.linspace(0.0, 1.0, (len(SAMPLE_S) - 1) * 24 + 1)
+#: The finer samples of :func:`fine_points` (a tighter screen near obstacles).
+FINE_S = np.linspace(0.0, 1.0, 49)
+FINE_T = np.linspace(0.0, 1.0, 25)
 _STEER_ALPHAS = 15
 _PEAK_S = np.linspace(0.0, 1.0, 49)
 
@@ -236,24 +260,27 @@ def _best_alphas(d, phi0, phi1, lo, hi, L, kmax) -> np.ndarray:
     return a
 
 
-def _sample(u: Union, L: float) -> tuple[np.ndarray, float]:
-    """Swept-segment points of ``u`` relative to its start, and their covering radius ``delta``."""
-    x = u.x_end * SAMPLE_S
+def _sample(
+    u: Union, L: float, S: np.ndarray = SAMPLE_S, T: np.ndarray = SAMPLE_T
+) -> tuple[np.ndarray, float]:
+    """Swept-segment points of ``u`` relative to its start (abscissae ``S``, positions along
+    the segment ``T``, fractions), and their covering radius ``delta``."""
+    x = u.x_end * S
     A = u.to_world(x, u.f(x)) - np.array(u.p0[:2])
     h = u.heading(x)
     U = np.column_stack((np.cos(h), np.sin(h)))
-    pts = (A[:, None, :] + L * SAMPLE_T[None, :, None] * U[:, None, :]).reshape(-1, 2)
+    pts = (A[:, None, :] + L * T[None, :, None] * U[:, None, :]).reshape(-1, 2)
     # covering radius: half the longest move of A or B between consecutive abscissae (measured
     # along a dense sampling: path length, not chord) plus half the spacing along the segment
-    xd = u.x_end * _DENSE
+    per = 24
+    xd = u.x_end * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1)
     Ad = u.to_world(xd, u.f(xd))
     hd = u.heading(xd)
     Bd = Ad + L * np.column_stack((np.cos(hd), np.sin(hd)))
-    per = len(_DENSE) // (len(SAMPLE_S) - 1)
     la = np.hypot(*np.diff(Ad, axis=0).T)
     lb = np.hypot(*np.diff(Bd, axis=0).T)
     run = max(la.reshape(-1, per).sum(axis=1).max(), lb.reshape(-1, per).sum(axis=1).max())
-    delta = 0.5 * run * 1.02 + 0.5 * L * (SAMPLE_T[1] - SAMPLE_T[0])
+    delta = 0.5 * run * 1.02 + 0.5 * L * (T[1] - T[0])
     return pts, float(delta)
 
 
@@ -267,17 +294,64 @@ def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
     )
 
 
+def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
+    """``(h0, di, dj, h1, cost)`` of ``p`` and of its three quarter-turned copies (integers only)."""
+    out, di, dj = [], p.di, p.dj
+    for q in range(4):
+        out.append(((p.h0 + 4 * q) % NH, di, dj, (p.h1 + 4 * q) % NH, p.cost))
+        di, dj = -dj, di
+    return out
+
+
+_FINE: dict[int, tuple] = {}  # id of a live set -> its fine points (dropped with the set)
+
+
+def fine_points(ps: PrimitiveSet) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Per heading ``h``: finer swept-segment points of the primitives ``ps.by_heading[h]``
+    (array ``(m, n, 2)``, relative to the start, lattice axes; :data:`FINE_S` x :data:`FINE_T`)
+    and their covering radii ``(m,)``, smaller than :attr:`Primitive.delta`.
+
+    A planner screens a primitive by these where its coarse points are not conclusive
+    (close to an obstacle), before the certified test. Computed once per set (kept while
+    the set lives).
+    """
+    out = _FINE.get(id(ps))
+    if out is None:
+        base = []
+        for h in range(4):
+            pts, dl = [], []
+            for p in ps.by_heading[h]:
+                u = p.union(0.0, 0.0, float(_ANGLES[h]), ps.resolution, ps.L)
+                q, d = _sample(u, ps.L, FINE_S, FINE_T)
+                pts.append(q)
+                dl.append(d)
+            base.append((np.stack(pts), np.array(dl)))
+        out = []
+        for h in range(NH):
+            pts, dl = base[h % 4]
+            for _ in range(h // 4):
+                pts = np.stack((-pts[..., 1], pts[..., 0]), axis=-1)
+            out.append((np.ascontiguousarray(pts), dl))
+        out = tuple(out)
+        _FINE[id(ps)] = out
+        weakref.finalize(ps, _FINE.pop, id(ps), None)
+    return out
+
+
 def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) -> bool:
-    """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?"""
+    """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?
+
+    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``.
+    """
     frontier = [(0, 0, h0, 0.0)]
     for _ in range(depth):
         nxt = []
         for i, j, h, c in frontier:
-            for p in kept[h]:
-                c2 = c + p.cost
+            for di, dj, h1, cost in kept[h]:
+                c2 = c + cost
                 if c2 > budget:
                     continue
-                s = (i + p.di, j + p.dj, p.h1)
+                s = (i + di, j + dj, h1)
                 if s == target:
                     return True
                 nxt.append((*s, c2))
@@ -285,12 +359,26 @@ def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) 
     return False
 
 
+def _validate(L, max_steer, resolution) -> None:
+    for name, v in (("L", L), ("resolution", resolution)):
+        if isinstance(v, bool) or not isinstance(v, int | float) or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    if not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
+        raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
+    if resolution > L:
+        raise ValueError(f"resolution must be at most L={L} (a turn needs several cells), got {resolution!r}")
+
+
 @functools.lru_cache(maxsize=8)
 def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
     """The motion primitives for a robot and a lattice resolution (module docstring).
 
-    Computed once per ``(L, max_steer, resolution)`` and kept (least-recently-used cache
-    of 8 sets: :func:`primitive_set.cache_clear` empties it).
+    The default sets (:data:`STORED_STEER`, ``L / resolution`` in :data:`STORED_CELLS`)
+    are read from the package data (:data:`DATA_PATH`, written by ``python -m segplan.fit``)
+    and scaled by ``L``: a union's shape and LONGD scale with ``L`` and the steering test is
+    invariant under the scaling, so the set of any ``L`` is the unit set scaled. Other sets
+    are computed (:func:`compute_primitive_set`, about a second). Either way a set is kept
+    (least-recently-used cache of 8 sets: :func:`primitive_set.cache_clear` empties it).
 
     Parameters
     ----------
@@ -306,13 +394,73 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     ValueError
         Naming the argument.
     """
-    for name, v in (("L", L), ("resolution", resolution)):
-        if isinstance(v, bool) or not isinstance(v, int | float) or not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
-    if not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
-        raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
-    if resolution > L:
-        raise ValueError(f"resolution must be at most L={L} (a turn needs several cells), got {resolution!r}")
+    _validate(L, max_steer, resolution)
+    cells = float(L) / float(resolution)
+    if max_steer == STORED_STEER and DATA_PATH.exists():
+        for n in STORED_CELLS:
+            if abs(cells - n) <= 1e-12 * n:
+                return from_arrays(stored_sets()[n], float(L), float(max_steer), float(resolution))
+    return compute_primitive_set(L, max_steer, resolution)
+
+
+#: The package data of the default primitive sets (unit ``L``), written by ``python -m segplan.fit``.
+DATA_PATH = Path(__file__).with_name("primitives.npz")
+#: Steering limit of the stored sets (radians: 45 deg).
+STORED_STEER = math.radians(45.0)
+#: ``L / resolution`` of the stored sets: the lattice's default resolution and its retry.
+STORED_CELLS = (8, 16)
+#: The per-primitive scalar fields of :func:`primitive_arrays` (``points`` apart).
+FIELDS = ("h0", "h1", "di", "dj", "cost", "alpha", "d", "phi0", "phi1", "peak_curvature", "delta")
+_INT_FIELDS = ("h0", "h1", "di", "dj")
+_LENGTHS = ("cost", "d", "delta")  # scale with L (points too; peak_curvature with 1 / L)
+
+
+def primitive_arrays(ps: PrimitiveSet) -> dict[str, np.ndarray]:
+    """The primitives of headings 0..3 of ``ps`` as arrays (the others are quarter turns of them).
+
+    Keys :data:`FIELDS` (one entry per primitive) and ``points`` (primitives x samples x 2).
+    """
+    base = [p for h in range(4) for p in ps.by_heading[h]]
+    out = {
+        f: np.array([getattr(p, f) for p in base], dtype=np.int64 if f in _INT_FIELDS else float)
+        for f in FIELDS
+    }
+    out["points"] = np.stack([p.points for p in base])
+    return out
+
+
+def from_arrays(a: dict, L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """The :class:`PrimitiveSet` of a unit-``L`` set's arrays (:func:`primitive_arrays`), scaled to ``L``."""
+    scale = {f: L for f in _LENGTHS} | {"peak_curvature": 1.0 / L}
+    cols = [a[f].tolist() if f in _INT_FIELDS else (a[f] * scale.get(f, 1.0)).tolist() for f in FIELDS]
+    pts = a["points"] * L
+    base: list[list[Primitive]] = [[] for _ in range(4)]
+    for k, row in enumerate(zip(*cols, strict=True)):
+        kw = dict(zip(FIELDS, row, strict=True))
+        base[kw["h0"]].append(Primitive(**kw, points=np.ascontiguousarray(pts[k])))
+    kept = [[_rotate_quarter(p, h // 4) for p in base[h % 4]] for h in range(NH)]
+    return PrimitiveSet(L, max_steer, resolution, tuple(tuple(k) for k in kept))
+
+
+@functools.cache
+def stored_sets() -> dict[int, dict[str, np.ndarray]]:
+    """The stored unit-``L`` sets by ``L / resolution`` (read once per process), and their
+    provenance (key ``"provenance"``: a JSON string)."""
+    with np.load(DATA_PATH, allow_pickle=False) as z:
+        out: dict = {n: {k: z[f"{n}/{k}"] for k in (*FIELDS, "points")} for n in STORED_CELLS}
+        out["provenance"] = str(z["provenance"])
+    return out
+
+
+def compute_primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """:func:`primitive_set` computed, never read from the stored sets (module docstring).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument.
+    """
+    _validate(L, max_steer, resolution)
     L, r = float(L), float(resolution)
     kmax = math.tan(max_steer) / L
     R = 1.0 / kmax
@@ -336,7 +484,15 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     def all_headings(b):
         return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
 
-    kept = all_headings(base)
+    kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
+
+    def keep(p: Primitive) -> None:
+        for h0_, di, dj, h1_, c in _steps(p):
+            kept[h0_].append((di, dj, h1_, c))
+
+    for b in base:
+        for p in b:
+            keep(p)
     per: dict = {}
     for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
         key = (h0, (h1 - h0) % NH)
@@ -349,5 +505,5 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
             continue
         base[h0].append(p)
         per[key] = per.get(key, 0) + 1
-        kept = all_headings(base)
-    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in kept))
+        keep(p)
+    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))

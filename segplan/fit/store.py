@@ -6,6 +6,13 @@ heuristic frame (:func:`segplan.fit.heuristic.fit_heuristic`) and rewrites
 ``segplan/constants.json`` (:data:`segplan.constants.PATH`) with their provenance;
 ``--check`` only compares the recomputed values with the stored ones (exit status 1 on a
 difference beyond :data:`RTOL`).
+
+It also recomputes the default motion primitives of the lattice planner (beyond the paper:
+unit ``L``, 45 deg steering, ``L / resolution`` in
+:data:`segplan.primitives.STORED_CELLS`; :func:`segplan.primitives.compute_primitive_set`,
+which uses the heuristic frame just fitted) and rewrites (or checks)
+``segplan/primitives.npz`` (:data:`segplan.primitives.DATA_PATH`), its provenance stored
+beside the arrays.
 """
 
 from __future__ import annotations
@@ -15,6 +22,7 @@ import datetime
 import json
 import math
 import platform
+import subprocess
 import sys
 from importlib import metadata
 from pathlib import Path
@@ -22,11 +30,21 @@ from typing import Any
 
 import numpy as np
 
-from .. import constants
+from .. import constants, primitives
 from . import formula2
 from .heuristic import fit_heuristic
 
-__all__ = ["COMMAND", "RTOL", "compute", "differences", "main", "write"]
+__all__ = [
+    "COMMAND",
+    "RTOL",
+    "compute",
+    "compute_primitives",
+    "differences",
+    "main",
+    "primitive_differences",
+    "write",
+    "write_primitives",
+]
 
 #: The command that writes the data file.
 COMMAND = "python -m segplan.fit"
@@ -138,18 +156,70 @@ def write(values: dict[str, Any], path: Path = constants.PATH) -> None:
     path.write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
 
 
+def compute_primitives() -> dict[int, dict[str, np.ndarray]]:
+    """The default primitive sets recomputed (unit ``L``), by ``L / resolution``."""
+    return {
+        n: primitives.primitive_arrays(
+            primitives.compute_primitive_set(1.0, primitives.STORED_STEER, 1.0 / n)
+        )
+        for n in primitives.STORED_CELLS
+    }
+
+
+def primitive_differences(new: dict, old: dict, rtol: float = RTOL) -> list[str]:
+    """Where two primitive data sets differ: integers and shapes exactly, floats beyond ``rtol``."""
+    out: list[str] = []
+    for n in primitives.STORED_CELLS:
+        for key in (*primitives.FIELDS, "points"):
+            a, b = np.asarray(new[n][key]), np.asarray(old[n][key])
+            if a.shape != b.shape:
+                out.append(f"/{n}/{key}: shape {a.shape} != stored {b.shape}")
+            elif a.dtype.kind == "i" and not np.array_equal(a, b):
+                out.append(f"/{n}/{key}: integers differ")
+            elif not np.allclose(a, b, rtol=rtol, atol=rtol):
+                out.append(f"/{n}/{key}: largest difference {np.max(np.abs(a - b)):.3g}")
+    return out
+
+
+def write_primitives(data: dict, path: Path = primitives.DATA_PATH) -> None:
+    """Write the primitive sets ``data`` (:func:`compute_primitives`) with their provenance (npz)."""
+    prov = {
+        **_provenance(),
+        "note": "unit L; sets by L / resolution; headings 0..3 (the others are quarter turns)",
+        "max_steer_deg": math.degrees(primitives.STORED_STEER),
+        "cells_per_L": list(primitives.STORED_CELLS),
+    }
+    arrays = {f"{n}/{k}": v for n, d in data.items() for k, v in d.items()}
+    with path.open("wb") as f:
+        np.savez_compressed(f, provenance=np.array(json.dumps(prov)), **arrays)
+
+
 def main(argv: list[str] | None = None) -> int:
     """``python -m segplan.fit [--check]``: rewrite (or only compare) the stored constants."""
     parser = argparse.ArgumentParser(prog=COMMAND, description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="only compare with the stored constants")
+    parser.add_argument(
+        "--primitives", action="store_true", help="only rewrite the primitives (from the stored constants)"
+    )
     args = parser.parse_args(argv)
+    if args.primitives and not args.check:
+        write_primitives(compute_primitives())
+        print(f"wrote {primitives.DATA_PATH}")
+        return 0
     values = compute()
     if args.check:
         diff = differences(values, constants.load())
         for line in diff:
             print(line, file=sys.stderr)
         print(f"{constants.PATH}: {'differs' if diff else 'matches the fits'}")
-        return 1 if diff else 0
+        pdiff = primitive_differences(compute_primitives(), primitives.stored_sets())
+        for line in pdiff:
+            print(line, file=sys.stderr)
+        print(f"{primitives.DATA_PATH}: {'differs' if pdiff else 'matches the computed primitives'}")
+        return 1 if diff or pdiff else 0
     write(values)
     print(f"wrote {constants.PATH}")
+    # the primitives use the heuristic frame: a fresh process computes them from the
+    # constants just written (this one read the old ones at import)
+    subprocess.run([sys.executable, "-m", "segplan.fit", "--primitives"], check=True)
     return 0
