@@ -35,7 +35,14 @@ from .search import astar
 from .validity import Workspace
 from .world import Robot, Scenario, make_scenario, with_clearance
 
-__all__ = ["PAPER_SHARE", "PLANNERS", "plan", "plan_scenario", "plan_scenario_observed"]
+__all__ = [
+    "LATTICE_AFTER_PAPER",
+    "PAPER_SHARE",
+    "PLANNERS",
+    "plan",
+    "plan_scenario",
+    "plan_scenario_observed",
+]
 
 
 _DS_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -114,6 +121,9 @@ def _check_choice(value, choices, name):
 PLANNERS = ("lattice", "paper")
 #: Share of ``time_limit`` the default planner gives the paper's search before the lattice.
 PAPER_SHARE = 0.2
+#: Expansions the lattice may spend looking for a shorter plan once the paper's search has
+#: found one (a count, not a time share: the plan returned does not depend on the machine).
+LATTICE_AFTER_PAPER = 2000
 
 
 def plan_scenario(
@@ -146,7 +156,9 @@ def plan_scenario(
     planner : {"lattice", "paper"}
         ``"lattice"`` (default, beyond the paper): the paper's search first, within
         :data:`PAPER_SHARE` of ``time_limit``, then the A* over a lattice of cubic-union
-        primitives (:func:`segplan.lattice.lattice_search`); the shorter plan found is
+        primitives (:func:`segplan.lattice.lattice_search`; at most
+        :data:`LATTICE_AFTER_PAPER` expansions when the paper's search found a plan, else
+        up to ``max_expansions`` and the rest of ``time_limit``); the shorter plan found is
         refined. ``"paper"``: the paper's search alone, exactly as the paper describes it
         (the book's reproduction chapters call it so).
     refine : bool or dict, optional
@@ -248,12 +260,15 @@ def plan_scenario(
     except NoPathError:
         pass
     left = float(time_limit) - (time.perf_counter() - t_start)
+    lattice_expansions = 200_000 if max_expansions is None else int(max_expansions)
     if paper is not None:
-        left = min(left, PAPER_SHARE * float(time_limit))
+        # a plan exists: the lattice looks for a shorter one within a bounded number of
+        # expansions (not a wall-clock share, so the answer does not depend on the machine)
+        lattice_expansions = min(lattice_expansions, LATTICE_AFTER_PAPER)
     try:
         found, links = lattice_search(
             scenario,
-            max_expansions=200_000 if max_expansions is None else max_expansions,
+            max_expansions=lattice_expansions,
             time_limit=max(left, 1e-3),
             **(lattice or {}),
         )
