@@ -5,7 +5,8 @@
 - benchmarks/results/robustness_ompl.csv covers every floor x planner x budget x seed that
   benchmarks/robustness.py defines, each on the floor the generator makes today
   (floor_key), with a provenance record;
-- the comparison and the verdicts judge by the stated criteria (synthetic tables);
+- the comparison and the verdicts (segplan.studies.robustness, by segplan.studies.verdicts)
+  judge by the stated criteria (synthetic tables);
 - ``benchmarks/robustness.py --quick`` runs (its OMPL part only where ompl is installed).
 """
 
@@ -20,12 +21,12 @@ import pandas as pd
 import pytest
 import shapely
 
-import segplan
+from segplan.api import PAPER_SHARE
 from segplan.studies import floors as fl
+from segplan.studies import peers
+from segplan.studies import robustness as rb
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from benchmarks import robustness as rb  # noqa: E402
 
 
 # -- the floors ---------------------------------------------------------------------------
@@ -131,9 +132,12 @@ def test_stored_ompl_csv_covers_every_run():
     for key in ("budgets", "seeds", "generator_version", "sessions"):
         assert key in prov
     for s in prov["sessions"]:
-        for key in ("started", "machine", "load_average_start", "ompl", "commit", "command", "note"):
+        for key in ("machine", "ompl", "commit", "command", "note"):
             assert key in s
+        assert "started" in s or "date" in s  # the first session's format, or peers.provenance's
         assert "other work" in s["note"]
+    lines = rb.session_lines(prov)
+    assert len(lines) == 4 * len(prov["sessions"]) + 1 and "OMPL" in lines[0]
     assert prov["budgets"] == list(rb.BUDGETS) and prov["generator_version"] == fl.GENERATOR_VERSION
 
 
@@ -150,6 +154,7 @@ def _tables(ratios, seconds, solved=True, valid=True):
             "reason": "",
             "valid": valid,
             "seconds": seconds,
+            "cpu_seconds": seconds,
             "front_length": ratios,
         }
     )
@@ -171,21 +176,31 @@ def _tables(ratios, seconds, solved=True, valid=True):
 def test_verdicts_follow_the_criteria():
     seg, ompl = _tables([0.9, 1.0, 1.1], [0.01, 0.02, 0.03])
     v = rb.verdicts(rb.compare(seg, ompl)).set_index("target")
-    assert v.loc["success, any headings", "verdict"] == "met"
-    assert v.loc["success, natural headings", "verdict"] == "not measured"
+    assert set(v.index) == set(rb.TARGETS)
+    assert v.loc["success, any headings", "verdict"] == "reproduced"
+    assert v.loc["success, natural headings", "verdict"] == "not reproduced"  # nothing measured
+    assert v.loc["success, natural headings", "measured"] == "no OMPL results"
     assert v.loc["plan time, median", "value"] == pytest.approx(20.0)
-    assert v.loc["plan time, median", "verdict"] == "met"
+    assert v.loc["plan time, median", "verdict"] == "reproduced" and v.loc["plan time, median", "timed"]
     assert v.loc["front-wheel length / BIT* 5 s, worst", "value"] == pytest.approx(1.1)
-    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "met"
+    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "reproduced"
+    assert not v.loc["front-wheel length / BIT* 5 s, median", "timed"]
+    assert v.loc["invalid plans", "criterion"] == rb.TARGETS["invalid plans"].text()
     seg, ompl = _tables([1.01, 1.2, 1.3], [0.1, 0.2, 0.4], valid=[True, True, False])
     v = rb.verdicts(rb.compare(seg, ompl)).set_index("target")
-    assert v.loc["success, any headings", "verdict"] == "missed"  # 2 of 3
-    assert v.loc["invalid plans", "verdict"] == "missed"
-    assert v.loc["plan time, median", "verdict"] == "missed"
+    assert v.loc["success, any headings", "verdict"] == "not reproduced"  # 2 of 3
+    assert v.loc["success, any headings", "value"] == pytest.approx(2 / 3)
+    assert v.loc["invalid plans", "verdict"] == "not reproduced"
+    assert v.loc["plan time, median", "verdict"] == "not reproduced"
     assert v.loc["front-wheel length / BIT* 5 s, worst", "value"] == pytest.approx(
         1.2
     )  # the invalid one has none
-    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "missed"
+    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "not reproduced"
+    claims = rb.claims(rb.verdicts(rb.compare(seg, ompl)), {"invalid plans": "f2"})
+    assert list(claims.columns) == ["claim", "paper", "ours", "criterion", "verdict", "why"]
+    assert len(claims) == len(rb.TARGETS)
+    row = claims[claims["claim"] == "issue 12: invalid plans"].iloc[0]
+    assert row["why"] == "f2" and row["verdict"] == "not reproduced" and row["ours"] == "1 of 3 plans"
 
 
 def test_compare_refuses_results_of_other_floors():
@@ -195,16 +210,29 @@ def test_compare_refuses_results_of_other_floors():
         rb.compare(seg, ompl)
 
 
-def test_planner_option_is_guarded():
-    import inspect
-
-    has = "planner" in inspect.signature(segplan.plan_scenario).parameters
-    if not has:
-        with pytest.raises(ValueError, match="planner"):
-            rb.segplan_options("paper")
+def test_options_subset_and_slow_floors():
+    sc = fl.random_floor("natural", 1)
+    with pytest.raises(ValueError, match="planner"):  # plan_scenario checks the options
+        rb.solve_segplan(sc, options=rb.segplan_options("sideways"))
+    with pytest.raises(ValueError, match="time_limit"):
+        rb.solve_segplan(sc, options=rb.segplan_options(time_limit=0))
     assert rb.segplan_options() == {} and rb.variant_label({}) == "default"
     assert rb.variant_label(rb.segplan_options(refine=True)) == "+refine"
+    opts = rb.segplan_options("paper", time_limit=rb.TIME_LIMIT)
+    assert (
+        opts == {"planner": "paper", "time_limit": rb.TIME_LIMIT}
+        and rb.variant_label(opts) == "planner=paper"
+    )
     assert rb.loglog_slope([1, 10, 100], [2, 20, 200]) == pytest.approx(1.0)
+    # the smallest internal limit of the default planner is 4 x the "slow" threshold
+    assert PAPER_SHARE * rb.TIME_LIMIT == pytest.approx(4 * rb.SLOW_SECONDS)
+    groups = rb.floor_groups(quick=True)
+    sub = rb.subset(groups, n_random=2)
+    assert [g for g, _ in sub] == ["any"] * 2 + ["natural"] * 2 + ["hard"] * len(groups["hard"])
+    with pytest.raises(ValueError, match="n_random"):
+        rb.subset(groups, n_random=-1)
+    t = pd.DataFrame({"floor": ["a", "b"], "seconds": [0.1, rb.SLOW_SECONDS + 0.1]})
+    assert list(rb.slow_floors(t)["floor"]) == ["b"]
 
 
 def test_solve_segplan_measures_a_plan():
@@ -228,6 +256,6 @@ def test_quick_run():
     )
     assert out.returncode == 0, out.stderr[-3000:]
     assert "invalid plans" in out.stdout and "success, any headings" in out.stdout
-    ompl = rb.peers.ompl_available()
+    ompl = peers.ompl_available()
     assert ("OMPL quick:" in out.stderr) == ompl
     assert ("skipping the OMPL side" in out.stderr) == (not ompl)

@@ -681,10 +681,11 @@ def _cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
-def provenance(argv: Sequence[str], config: StudyConfig, jobs: int) -> dict:
+def provenance(argv: Sequence[str], config: StudyConfig | None, jobs: int) -> dict:
     """How, when and where a study is measured: date (UTC), machine (CPU, cores, load),
     Python, numpy and OMPL versions, the commit (and whether the tree had changes), the
-    command line, the configuration and the harness version."""
+    command line, the configuration (``None`` for a study that records its own, such as
+    :mod:`segplan.studies.robustness`) and the harness version."""
     from .. import __version__
 
     status = _git("status", "--porcelain", "--untracked-files=no")
@@ -707,7 +708,7 @@ def provenance(argv: Sequence[str], config: StudyConfig, jobs: int) -> dict:
         "command": " ".join(["python", *argv]),
         "jobs": jobs,
         "harness_version": HARNESS_VERSION,
-        "config": asdict(config),
+        "config": None if config is None else asdict(config),
     }
 
 

@@ -1,0 +1,599 @@
+"""Robustness of segplan on random and hard floors, against OMPL's BIT* (issue 12, item 5).
+
+The floors are :mod:`segplan.studies.floors` (:func:`floor_groups`): 200 random 20 x 12 m
+floors of each heading kind (``any``, ``natural``), the hard cases, six 160 x 96 m floors
+with 512 obstacles, and a size sweep (:func:`sweep_floors`). Both sides are measured by
+:func:`segplan.metrics.measure_scenario_path` (front-wheel length; the dense oracle).
+
+**OMPL** (optional dependency; slow, run once and stored by :func:`run_ompl` in
+:data:`OMPL_CSV`, :data:`OMPL_PATHS`, :data:`OMPL_PROVENANCE`): BIT* on the Dubins space of
+radius ``L / tan(max_steer)`` at 2 and 5 s, chapter 8's set-up, one process per run; on
+``turn_around`` also RRT* and Informed RRT*. It is the feasibility oracle and, at 5 s, the
+length reference (:func:`reference`).
+
+**segplan** (:func:`solve_segplan`, computed when asked): :func:`segplan.plan_scenario` per
+floor; :func:`compare` adds the ratio to OMPL's length, :func:`verdicts` judges each target
+of issue 12 (:data:`TARGETS`) with :func:`segplan.studies.verdicts.judge`.
+
+**Deterministic results, varying times.** The study bounds the default planner by
+``max_expansions=`` :data:`MAX_EXPANSIONS` (the same on every machine) and passes
+``time_limit=`` :data:`TIME_LIMIT`: the default planner gives the paper's search, and the
+lattice after a paper plan, ``PAPER_SHARE`` of it, so no internal limit is below
+4 x :data:`SLOW_SECONDS`. A floor that needs more than :data:`SLOW_SECONDS` is listed as slow
+(:func:`slow_floors`) with the times, instead of a time-out changing a success count on a
+slower machine.
+
+``benchmarks/robustness.py`` is the command line; chapter 9 of the book uses this module.
+"""
+
+from __future__ import annotations
+
+import datetime
+import gzip
+import json
+import math
+import os
+import statistics
+import time
+from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..api import PAPER_SHARE, plan_scenario
+from ..metrics import measure_scenario_path, plan_poses
+from ..path import NoPathError
+from ..world import Scenario
+from . import floors as fl
+from . import peers
+from .verdicts import Criterion, claims_table, judge
+
+__all__ = [
+    "BUDGETS",
+    "MAX_EXPANSIONS",
+    "OMPL_CSV",
+    "OMPL_PATHS",
+    "OMPL_PROVENANCE",
+    "REFERENCE_BUDGET",
+    "SLOW_SECONDS",
+    "SUBSET_RANDOM",
+    "TARGETS",
+    "TIME_LIMIT",
+    "claims",
+    "compare",
+    "floor_groups",
+    "job_id",
+    "loglog_slope",
+    "ompl_jobs",
+    "read_ompl",
+    "read_ompl_paths",
+    "reference",
+    "run_ompl",
+    "run_segplan",
+    "segplan_options",
+    "session_lines",
+    "slow_floors",
+    "solve_segplan",
+    "subset",
+    "sweep_floors",
+    "variant_label",
+    "verdicts",
+    "warm_up",
+]
+
+#: The stored OMPL side, in the repository's ``benchmarks/results/``.
+RESULTS = Path(__file__).resolve().parents[2] / "benchmarks" / "results"
+OMPL_CSV = RESULTS / "robustness_ompl.csv"
+OMPL_PATHS = RESULTS / "robustness_ompl_paths.json.gz"
+OMPL_PROVENANCE = RESULTS / "robustness_ompl.json"
+
+#: BIT*'s budgets (s): the feasibility oracle and the length reference (the largest).
+BUDGETS = (2.0, 5.0)
+REFERENCE_BUDGET = 5.0
+#: OMPL seeds: one per random floor and large crossing, three per hard case.
+RANDOM_SEEDS = (1,)
+HARD_SEEDS = (1, 2, 3)
+#: On turn_around the target is the best OMPL result at 5 s: all three planners, five seeds.
+TURN_AROUND_PLANNERS = ("RRTstar", "InformedRRTstar", "BITstar")
+TURN_AROUND_SEEDS = (1, 2, 3, 4, 5)
+#: 160 x 96 m floors with 512 obstacles, one crossing each.
+N_LARGE = 6
+#: The size sweep: scales s of the 20 x 12 m room (obstacles 8 s^2), obstacle counts on the
+#: 160 x 96 m room, and crossings per point.
+SWEEP_SCALES = (1.0, 2.0**0.5, 2.0, 2.0**1.5, 4.0, 2.0**2.5, 8.0)
+SWEEP_COUNTS = (0, 32, 128, 512)
+SWEEP_CROSSINGS = 2
+#: Stored path poses: about one every PATH_STEP m, rounded to the millimetre.
+PATH_STEP = 0.2
+#: The book's subset (chapter 9): the first SUBSET_RANDOM random floors of each kind, every
+#: hard case, the first large floor.
+SUBSET_RANDOM = 40
+#: The study's limits of segplan's default planner: expansions (the machine-independent
+#: bound), a time limit whose smallest internal share PAPER_SHARE * TIME_LIMIT is
+#: 4 x SLOW_SECONDS, and the time (s) above which a floor is "slow".
+MAX_EXPANSIONS = 1000
+SLOW_SECONDS = 3.0
+TIME_LIMIT = 4.0 * SLOW_SECONDS / PAPER_SHARE
+
+OMPL_COLUMNS = tuple(
+    (
+        "group floor floor_key generator planner budget seed status solved valid seconds "
+        "cpu_seconds checks ompl_cost front_length rear_length max_curvature "
+        "curvature_jumps reversals clearance messages"
+    ).split()
+)
+SEGPLAN_COLUMNS = tuple(
+    (
+        "group floor floor_key variant solved reason valid seconds plan_seconds "
+        "cpu_seconds front_length plan_cost clearance nodes obstacles area"
+    ).split()
+)
+
+#: Issue 12's targets: each a criterion, judged by :func:`verdicts` (``varies``: a time).
+_SHARE = "share of the floors OMPL solves that segplan solves validly"
+_RATIO = "front-wheel length over BIT*'s at 5 s (random floors both solve)"
+TARGETS = {
+    "success, any headings": Criterion(f"{_SHARE}, any headings", ">=", 0.99, fmt="{:.1%}"),
+    "success, natural headings": Criterion(f"{_SHARE}, natural headings", ">=", 0.99, fmt="{:.1%}"),
+    "invalid plans": Criterion("plans the dense oracle rejects, every floor", "==", 0, fmt="{:.0f}"),
+    "plan time, median": Criterion("median plan time, random floors [ms]", "<=", 50.0, varies=True),
+    "plan time, 95th percentile": Criterion(
+        "95th pct. plan time, random floors [ms]", "<=", 300.0, varies=True
+    ),
+    "front-wheel length / BIT* 5 s, median": Criterion(f"median {_RATIO}", "<=", 1.00, fmt="{:.3f}"),
+    "front-wheel length / BIT* 5 s, worst": Criterion(f"largest {_RATIO}", "<=", 1.15, fmt="{:.3f}"),
+    "turn_around / best OMPL at 5 s": Criterion(
+        "front-wheel length on turn_around over the best OMPL result at 5 s", "<=", 1.05, fmt="{:.3f}"
+    ),
+    "160 x 96 m, 512 obstacles: plan time median": Criterion(
+        "median plan time across 160 x 96 m, 512 obstacles [s]", "<=", 1.0, varies=True
+    ),
+    "enclosed goal: no plan": Criterion("plans returned for an enclosed goal", "==", 0, fmt="{:.0f}"),
+    "enclosed goal: time": Criterion("slowest NoPathError for an enclosed goal [s]", "<=", 1.0, varies=True),
+}
+
+
+# -- the floors ---------------------------------------------------------------------------
+def floor_groups(quick: bool = False) -> dict[str, list[Scenario]]:
+    """The study's floors by group: ``any``, ``natural`` (random), ``hard``, ``large``.
+
+    ``quick``: three random floors of each kind, every hard case but none large.
+    """
+    n = 3 if quick else fl.N_FLOORS
+    groups = {kind: [fl.random_floor(kind, i) for i in range(n)] for kind in fl.KINDS}
+    groups["hard"] = list(fl.hard_cases().values())
+    groups["large"] = [] if quick else [fl.large_floor(i) for i in range(N_LARGE)]
+    return groups
+
+
+def subset(groups: dict[str, list[Scenario]], n_random: int = SUBSET_RANDOM, n_large: int = 1) -> list:
+    """``(group, scenario)`` of the book's subset: the first ``n_random`` random floors of
+    each kind, every hard case, the first ``n_large`` large floors."""
+    for name, n in (("n_random", n_random), ("n_large", n_large)):
+        if isinstance(n, bool) or not isinstance(n, int) or n < 0:
+            raise ValueError(f"{name} must be an integer >= 0, got {n!r}")
+    out = [(k, sc) for k in fl.KINDS for sc in groups.get(k, [])[:n_random]]
+    out += [("hard", sc) for sc in groups.get("hard", [])]
+    return out + [("large", sc) for sc in groups.get("large", [])[:n_large]]
+
+
+def sweep_floors(crossings: int = SWEEP_CROSSINGS) -> list[Scenario]:
+    """The size sweep: every scale at the small floors' density, then every obstacle count
+    on the 160 x 96 m room; ``crossings`` crossings each."""
+    if isinstance(crossings, bool) or not isinstance(crossings, int) or crossings < 1:
+        raise ValueError(f"crossings must be an integer >= 1, got {crossings!r}")
+    out = [fl.sweep_floor(s, None, i) for s in SWEEP_SCALES for i in range(crossings)]
+    out += [fl.sweep_floor(8.0, n, i) for n in SWEEP_COUNTS for i in range(crossings)]
+    return list({sc.name: sc for sc in out}.values())
+
+
+def ompl_jobs(groups: dict[str, list[Scenario]], budgets: Sequence[float] = BUDGETS) -> list[tuple]:
+    """Every OMPL run the study defines: ``(group, scenario, planner, budget, seed)``.
+
+    BIT* at each budget on every floor (seeds :data:`RANDOM_SEEDS` on random and large
+    floors, :data:`HARD_SEEDS` on hard cases); on ``turn_around`` also
+    :data:`TURN_AROUND_PLANNERS` x :data:`TURN_AROUND_SEEDS` at the largest budget.
+    Ordered so that a partial run covers every group: hard and large floors first, then
+    the random floors of both kinds alternately.
+    """
+    jobs = []
+    for group in ("hard", "large"):
+        for sc in groups.get(group, ()):
+            seeds = HARD_SEEDS if group == "hard" else RANDOM_SEEDS
+            jobs += [(group, sc, "BITstar", float(b), s) for b in budgets for s in seeds]
+            if sc.name == "turn_around":
+                for p in TURN_AROUND_PLANNERS:
+                    jobs += [(group, sc, p, float(max(budgets)), s) for s in TURN_AROUND_SEEDS]
+    random = [groups.get(k, []) for k in fl.KINDS]
+    for i in range(max(map(len, random), default=0)):
+        for kind, scs in zip(fl.KINDS, random, strict=True):
+            if i < len(scs):
+                jobs += [(kind, scs[i], "BITstar", float(b), s) for b in budgets for s in RANDOM_SEEDS]
+    return list({(g, sc.name, p, b, s): (g, sc, p, b, s) for g, sc, p, b, s in jobs}.values())
+
+
+def job_id(job: tuple) -> str:
+    """``"floor|planner|budget|seed"``: a run's key in the stored files."""
+    _, sc, p, b, s = job
+    return f"{sc.name}|{p}|{b:g}|{s}"
+
+
+# -- OMPL side (stored) -------------------------------------------------------------------
+def ompl_row(job: tuple, resolution: float = peers.RESOLUTION) -> tuple[dict, list | None]:
+    """One OMPL run in a fresh process (:func:`segplan.studies.peers.solve_ompl_isolated`):
+    its CSV row and its path (poses about every :data:`PATH_STEP` m, or None)."""
+    group, sc, planner, budget, seed = job
+    r = peers.solve_ompl_isolated(sc, planner, budget, seed, "dubins", resolution=resolution)
+    row = {c: r.get(c, math.nan) for c in OMPL_COLUMNS}
+    row.update(group=group, floor=sc.name, floor_key=fl.floor_key(sc), generator=fl.GENERATOR_VERSION)
+    row.update(planner=planner, budget=float(budget), seed=int(seed))
+    poses = r.get("poses")
+    if poses is not None:
+        P = np.asarray(poses)
+        k = max(1, round(PATH_STEP / peers.PLOT_STEP))
+        P = P[np.unique(np.r_[np.arange(0, len(P), k), len(P) - 1])]
+        poses = np.round(P, 3).tolist()
+    return row, poses
+
+
+def read_ompl(path: str | Path = OMPL_CSV) -> pd.DataFrame:
+    """The stored OMPL runs (empty frame with :data:`OMPL_COLUMNS` if none); ``solved`` and
+    ``valid`` as booleans."""
+    if not Path(path).exists():
+        return pd.DataFrame(columns=list(OMPL_COLUMNS))
+    t = pd.read_csv(path, keep_default_na=False, na_values=[""])
+    for c in ("solved", "valid"):
+        t[c] = t[c].astype(bool)
+    return t
+
+
+def read_ompl_paths(path: str | Path = OMPL_PATHS) -> dict[str, np.ndarray]:
+    """Stored OMPL paths at the reference budget, by :func:`job_id`."""
+    out = {}
+    if Path(path).exists():
+        with gzip.open(path, "rt") as fh:
+            for line in fh:
+                if line.strip():
+                    d = json.loads(line)
+                    out[d["id"]] = np.asarray(d["poses"])
+    return out
+
+
+def run_ompl(
+    jobs: list[tuple],
+    out: str | Path = OMPL_CSV,
+    paths_out: str | Path = OMPL_PATHS,
+    provenance: str | Path = OMPL_PROVENANCE,
+    workers: int = 2,
+    progress: Callable[[str], None] | None = None,
+    argv: Sequence[str] = ("benchmarks/robustness.py", "--ompl"),
+) -> pd.DataFrame:
+    """Run the OMPL jobs not stored yet, ``workers`` processes at a time; append each row
+    to ``out`` as it finishes, the paths at the reference budget to ``paths_out``, and
+    keep ``provenance`` up to date (a session per call: :func:`segplan.studies.peers.provenance`
+    of ``argv``, with the runs done and the load average during them). Returns the whole
+    stored table."""
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    out, paths_out, provenance = Path(out), Path(paths_out), Path(provenance)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    have = read_ompl(out)
+    done = {
+        f"{f}|{p}|{b:g}|{s}": k
+        for f, p, b, s, k in zip(
+            have["floor"], have["planner"], have["budget"], have["seed"], have["floor_key"], strict=True
+        )
+    }
+    stale = [j for j in jobs if job_id(j) in done and done[job_id(j)] != fl.floor_key(j[1])]
+    if stale:
+        raise RuntimeError(f"{len(stale)} stored runs were measured on other floors: delete {out} first")
+    todo = [j for j in jobs if job_id(j) not in done]
+    record = json.loads(provenance.read_text()) if provenance.exists() else {"sessions": []}
+    session = peers.provenance(list(argv), None, workers)
+    session.update(
+        runs_to_do=len(todo),
+        note=(
+            "Measured on a shared 2-core machine while other work (other helpers' tests and "
+            "notebooks) ran on it: budgets are wall-clock, so BIT* got less CPU than its budget "
+            "in some runs (cpu_seconds / seconds < 1)."
+        ),
+    )
+    record.update(
+        what="OMPL BIT* (and RRT*, Informed RRT* on turn_around) on segplan.studies.floors, "
+        "segplan.studies.robustness",
+        generator_version=fl.GENERATOR_VERSION,
+        budgets=list(BUDGETS),
+        seeds=dict(
+            random=[*RANDOM_SEEDS],
+            large=[*RANDOM_SEEDS],
+            hard=[*HARD_SEEDS],
+            turn_around=[*TURN_AROUND_SEEDS],
+        ),
+        space="Dubins, radius L / tan(max_steer); validity segplan.studies.peers.SegmentValidity",
+        motion_check_resolution_m=peers.RESOLUTION,
+        measured_by="segplan.metrics.measure_scenario_path, samples every 1 cm",
+    )
+    record["sessions"].append(session)
+
+    def save_record():
+        tmp = provenance.with_suffix(".tmp")
+        tmp.write_text(json.dumps(record, indent=1) + "\n")
+        tmp.replace(provenance)
+
+    save_record()
+    header = not out.exists() or out.stat().st_size == 0
+    loads = []
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = {pool.submit(ompl_row, j): j for j in todo}
+        for n, fut in enumerate(as_completed(futures), 1):
+            job = futures[fut]
+            row, poses = fut.result()
+            pd.DataFrame([row], columns=list(OMPL_COLUMNS)).to_csv(out, mode="a", header=header, index=False)
+            header = False
+            if poses is not None and job[3] == REFERENCE_BUDGET:
+                with gzip.open(paths_out, "at") as fh:
+                    fh.write(json.dumps({"id": job_id(job), "poses": poses}) + "\n")
+            loads.append(os.getloadavg()[0])
+            if progress:
+                progress(
+                    f"[{n}/{len(todo)}] {job_id(job)} solved={row['solved']} front={row['front_length']:.3f}"
+                )
+            if n % 20 == 0 or n == len(todo):
+                session.update(
+                    runs_done=n,
+                    load_average_1min={"min": min(loads), "mean": statistics.fmean(loads), "max": max(loads)},
+                )
+                save_record()
+    session["finished"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
+    session["load_average_end"] = list(os.getloadavg())
+    save_record()
+    return read_ompl(out)
+
+
+def session_lines(record: dict) -> list[str]:
+    """The stored provenance in words, a line per fact: per session when, where (CPU,
+    cores), OMPL's version, the command and commit, the load, the note. Reads the sessions
+    :func:`run_ompl` writes and the first session's own format (``started``, ``host``)."""
+    lines = []
+    for s in record.get("sessions", []):
+        m = s["machine"]
+        start = s.get("started", s.get("date", "?"))
+        load = s.get("load_average_start") or m.get("load_average_before") or [math.nan]
+        la = s.get("load_average_1min", {})
+        lines.append(
+            f"session {start} to {s.get('finished', '(unfinished)')}: {m['cpu']}, {m['cores']} cores, "
+            f"OMPL {s['ompl']}"
+        )
+        lines.append(
+            f"  command: {s['command']} (nice {s.get('nice', m.get('nice'))}), commit {s['commit'][:12]}"
+        )
+        lines.append(
+            f"  load average at start {load[0]:.1f}; during the runs {la.get('min', math.nan):.1f} to "
+            f"{la.get('max', math.nan):.1f} (mean {la.get('mean', math.nan):.1f})"
+        )
+        lines.append(f"  {s['note']}")
+    lines.append(
+        f"budgets {record['budgets']} s; seeds {record['seeds']}; floors of generator "
+        f"v{record['generator_version']}"
+    )
+    return lines
+
+
+# -- segplan side ---------------------------------------------------------------------------
+def segplan_options(
+    planner: str | None = None,
+    refine: bool | None = None,
+    time_limit: float | None = None,
+    max_expansions: int | None = None,
+) -> dict:
+    """Keyword arguments of :func:`segplan.plan_scenario` for a variant of segplan: those
+    given (``{}``: the default planner with its own limits). :func:`segplan.plan_scenario`
+    checks them (ValueError naming the argument). The study passes :data:`TIME_LIMIT` and
+    :data:`MAX_EXPANSIONS`."""
+    given = {"planner": planner, "refine": refine, "time_limit": time_limit, "max_expansions": max_expansions}
+    return {k: v for k, v in given.items() if v is not None}
+
+
+def variant_label(options: dict) -> str:
+    """A short name of a variant: ``"default"``, ``"planner=paper +refine"``, ... (the time
+    limit is not part of the name)."""
+    parts = [f"planner={options['planner']}"] if "planner" in options else []
+    if "refine" in options:
+        parts.append("+refine" if options["refine"] else "-refine")
+    return " ".join(parts) or "default"
+
+
+def warm_up(options: dict | None = None) -> float:
+    """The process's one-time set-up of segplan (s), excluded from the times like OMPL's
+    library load: :func:`segplan.studies.peers.warm_up` and one plan with ``options``."""
+    t0 = time.perf_counter()
+    peers.warm_up()
+    try:
+        plan_scenario(fl.random_floor("natural", 0), **(options or {}))
+    except NoPathError:
+        pass
+    return time.perf_counter() - t0
+
+
+def solve_segplan(scenario: Scenario, group: str = "", options: dict | None = None, step: float = peers.STEP):
+    """segplan on one floor: its row (:data:`SEGPLAN_COLUMNS`) and the plan (or None).
+
+    ``seconds`` is the wall time of the :func:`segplan.plan_scenario` call (search and,
+    if the variant refines, refinement; the first plan on this floor in a warm process,
+    see :func:`warm_up`); ``plan_seconds`` the planner's own ``Plan.seconds`` (or the
+    ``NoPathError``'s); ``cpu_seconds`` the CPU time of the call. The plan is sampled every
+    ``step`` m and measured by :func:`segplan.metrics.measure_scenario_path`: ``valid`` is
+    the dense oracle's verdict, ``front_length`` the measured front-wheel length
+    (``plan_cost``: the plan's own LONGD).
+    """
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    options = dict(options or {})
+    xmin, ymin, xmax, ymax = scenario.bounds
+    row = {
+        "group": group,
+        "floor": scenario.name,
+        "floor_key": fl.floor_key(scenario),
+        "variant": variant_label(options),
+        "obstacles": len(scenario.obstacles),
+        "area": (xmax - xmin) * (ymax - ymin),
+    }
+    t0, c0 = time.perf_counter(), time.process_time()
+    try:
+        plan = plan_scenario(scenario, **options)
+    except NoPathError as exc:
+        row.update(solved=False, reason=exc.reason, valid=False, seconds=time.perf_counter() - t0)
+        row.update(cpu_seconds=time.process_time() - c0, plan_seconds=exc.seconds, nodes=0)
+        row.update(front_length=math.nan, plan_cost=math.nan, clearance=math.nan)
+        return row, None
+    seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+    m = measure_scenario_path(plan_poses(plan, step), scenario)
+    row.update(solved=True, reason="", valid=not m.collides, seconds=seconds, plan_seconds=plan.seconds)
+    row.update(cpu_seconds=cpu, front_length=m.front_length, plan_cost=plan.cost, clearance=m.clearance)
+    row["nodes"] = len(plan.nodes)
+    return row, plan
+
+
+def run_segplan(
+    scenarios: Iterable[tuple[str, Scenario]],
+    options: dict | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> tuple[pd.DataFrame, dict]:
+    """:func:`solve_segplan` on every ``(group, scenario)``: the table and the plans by floor name."""
+    rows, plans = [], {}
+    for group, sc in scenarios:
+        row, plan = solve_segplan(sc, group, options)
+        rows.append(row)
+        plans[sc.name] = plan
+        if progress:
+            progress(
+                f"{group} {sc.name}: solved={row['solved']} valid={row['valid']} {row['reason']} "
+                f"front={row['front_length']:.3f} {1e3 * row['seconds']:.1f} ms "
+                f"(CPU {1e3 * row['cpu_seconds']:.1f} ms)"
+            )
+    return pd.DataFrame(rows, columns=list(SEGPLAN_COLUMNS)), plans
+
+
+def slow_floors(table: pd.DataFrame, limit: float = SLOW_SECONDS) -> pd.DataFrame:
+    """The rows whose call took more than ``limit`` seconds (wall time): the floors a
+    machine slower by ``TIME_LIMIT * PAPER_SHARE / limit`` could see time out."""
+    return table[table["seconds"] > limit]
+
+
+# -- comparison and targets -------------------------------------------------------------------
+def reference(ompl: pd.DataFrame) -> pd.DataFrame:
+    """Per floor, from the stored OMPL runs: ``ompl_runs``, ``ompl_solved`` (some run found
+    a valid path: the feasibility oracle), ``ompl_front`` (the shortest valid front-wheel
+    length at :data:`REFERENCE_BUDGET`, over planners and seeds), ``ompl_planner``."""
+    cols = ["floor", "ompl_key", "ompl_runs", "ompl_solved", "ompl_front", "ompl_planner"]
+    if ompl.empty:
+        return pd.DataFrame(columns=cols)
+    t = ompl.copy()
+    t["valid"] = t["valid"].astype(bool)
+    rows = []
+    for name, runs in t.groupby("floor", sort=False):
+        ok = runs[runs["valid"]]
+        ref = ok[ok["budget"] == REFERENCE_BUDGET]
+        best = ref.loc[ref["front_length"].idxmin()] if len(ref) else None
+        rows.append(
+            {
+                "floor": name,
+                "ompl_key": runs["floor_key"].iloc[0],
+                "ompl_runs": len(runs),
+                "ompl_solved": bool(len(ok)),
+                "ompl_front": math.nan if best is None else float(best["front_length"]),
+                "ompl_planner": "" if best is None else str(best["planner"]),
+            }
+        )
+    return pd.DataFrame(rows, columns=cols)
+
+
+def compare(seg: pd.DataFrame, ompl: pd.DataFrame) -> pd.DataFrame:
+    """segplan's rows with the OMPL reference of their floor and ``ratio`` (segplan's
+    front-wheel length over :func:`reference`'s ``ompl_front``; NaN unless both have a
+    valid path). Raises ValueError if a floor's stored OMPL runs were made on another floor
+    (``floor_key``)."""
+    out = seg.merge(reference(ompl), on="floor", how="left")
+    stale = out["ompl_key"].notna() & (out["ompl_key"] != out["floor_key"])
+    if stale.any():
+        raise ValueError(f"ompl: stored runs of {list(out.loc[stale, 'floor'])} were made on other floors")
+    out["ompl_solved"] = out["ompl_solved"].astype(object).fillna(False).astype(bool)
+    out["solved"] = out["solved"].astype(bool)
+    out["valid"] = out["valid"].astype(bool)
+    ok = out["solved"] & out["valid"]
+    out["ratio"] = np.where(ok, out["front_length"] / out["ompl_front"], math.nan)
+    return out
+
+
+def verdicts(table: pd.DataFrame) -> pd.DataFrame:
+    """Each target of issue 12 (:data:`TARGETS`) judged on :func:`compare`'s table:
+    ``target``, ``criterion`` (its text), ``measured``, ``value``, ``verdict`` (the word of
+    :func:`segplan.studies.verdicts.judge`), ``judged`` (the
+    :class:`~segplan.studies.verdicts.Verdict`) and ``timed`` (the value is a time, so the
+    verdict may vary from run to run). Nothing measured (e.g. no OMPL result) is "not
+    reproduced", with the reason in ``measured``."""
+    nan = math.nan
+    rows = []  # (target, value, measured)
+    random = table[table["group"].isin(fl.KINDS)]
+    good = table["solved"] & table["valid"]
+    for kind in fl.KINDS:
+        t = table[(table["group"] == kind) & table["ompl_solved"]]
+        n, rate = int(good[t.index].sum()), good[t.index].mean() if len(t) else nan
+        text = f"{n} of {len(t)} ({100 * rate:.1f} %)" if len(t) else "no OMPL results"
+        rows.append((f"success, {kind} headings", rate, text))
+    bad = int((table["solved"] & ~table["valid"]).sum())
+    rows.append(("invalid plans", float(bad), f"{bad} of {int(table['solved'].sum())} plans"))
+    for label, q in (("median", 0.5), ("95th percentile", 0.95)):
+        v, c = (1e3 * random[k].quantile(q) if len(random) else nan for k in ("seconds", "cpu_seconds"))
+        rows.append((f"plan time, {label}", v, f"{v:.1f} ms (wall; CPU {c:.1f} ms)"))
+    r = random["ratio"].dropna()
+    for label, v in (("median", r.median()), ("worst", r.max())):
+        v = float(v) if len(r) else nan
+        rows.append((f"front-wheel length / BIT* 5 s, {label}", v, f"{v:.3f} ({len(r)} floors both solve)"))
+    ta = table.loc[table["floor"] == "turn_around", "ratio"]
+    v = float(ta.iloc[0]) if len(ta) else nan
+    rows.append(("turn_around / best OMPL at 5 s", v, f"{v:.3f}" if v == v else "no plan or no OMPL result"))
+    large = table[table["group"] == "large"]
+    v = float(large["seconds"].median()) if len(large) else nan
+    text = f"{v:.2f} s ({int(good[large.index].sum())} of {len(large)} crossings solved)"
+    rows.append(("160 x 96 m, 512 obstacles: plan time median", v, text))
+    enc = table[table["floor"].str.startswith("enclosed")]
+    n = int(enc["solved"].sum())
+    rows.append(
+        ("enclosed goal: no plan", float(n) if len(enc) else nan, f"{n} of {len(enc)} returned a plan")
+    )
+    v = float(enc["seconds"].max()) if len(enc) else nan
+    rows.append(("enclosed goal: time", v, f"slowest {v:.2f} s"))
+    out = pd.DataFrame(rows, columns=["target", "value", "measured"])
+    out["criterion"] = [TARGETS[t].text() for t in out["target"]]
+    out["judged"] = [judge(v, TARGETS[t]) for t, v in zip(out["target"], out["value"], strict=True)]
+    out["verdict"] = [v.word for v in out["judged"]]
+    out["timed"] = [TARGETS[t].varies for t in out["target"]]
+    return out[["target", "criterion", "measured", "value", "verdict", "judged", "timed"]]
+
+
+def claims(verdict: pd.DataFrame, why: dict[str, str] | None = None) -> pd.DataFrame:
+    """The chapter's claims table (:func:`segplan.studies.verdicts.claims_table`), a row
+    per target of :func:`verdicts`, with ``why`` by target."""
+    why = dict(why or {})
+    return claims_table(
+        {
+            "claim": f"issue 12: {v['target']}",
+            "paper": "beyond the paper (issue 12's target)",
+            "ours": v["measured"],
+            "verdict": v["judged"],
+            "why": why.get(v["target"], ""),
+        }
+        for _, v in verdict.iterrows()
+    )
+
+
+def loglog_slope(x: Sequence[float], y: Sequence[float]) -> float:
+    """Least-squares slope of ``log y`` against ``log x`` (the exponent of a power law)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 2:
+        return math.nan
+    return float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
