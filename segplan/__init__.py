@@ -8,11 +8,11 @@ README's diagram; enforced by the import-linter contract in ``pyproject.toml``):
 
     apps      cli, animate, studies/, fit/ (above plot)
     api       api (plan, plan_scenario), refine
-    search    search (A*), expansion (the paper's intermediate nodes)
-    problem   problem, links, validity, path, metrics
+    search    search (A*), expansion (the paper's intermediate nodes), lattice, approach
+    problem   problem, links, validity, path, metrics, primitives, clearance
     world     world, floors, collision, sweep
     numerics  frame (above frame_exact), cost, geometry
-    base      union, constants (the stored fits), romberg, pose, derivation
+    base      union, constants (the stored fits), romberg, pose, derivation, dubins
 """
 
 from .api import plan, plan_scenario
