@@ -52,9 +52,11 @@ def block(runs: int = 9) -> str:
         rows.append(refined)
     when = datetime.date.today().isoformat()
     cpu = platform.processor() or platform.machine()
+    load = os.getloadavg()[0]  # other work on the machine slows every rate below
     lines = [
         f"Measured on {when}, {cpu}, {os.cpu_count()} cores, one core used, Python "
-        f"{platform.python_version()}, numpy {longd['numpy']}, by `python benchmarks/readme.py`.",
+        f"{platform.python_version()}, numpy {longd['numpy']}, by `python benchmarks/readme.py`; "
+        f"load average {load:.1f} at the end of the run ({'a quiet' if load < 1.5 else 'a shared'} machine).",
         "",
         "| cost LONGD | evaluations/s |",
         "| --- | --- |",
