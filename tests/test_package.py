@@ -23,10 +23,12 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def test_shipped_scenarios_are_the_repository_files():
     names = segplan.shipped_scenarios()
-    assert names == tuple(sorted(p.stem for p in (ROOT / "scenarios").glob("*.json")))
+    files = {p.stem: p for p in (ROOT / "scenarios").glob("*.json")}
+    files |= {p.stem: p for p in (ROOT / "scenarios" / "beyond_the_paper").glob("*.json")}
+    assert names == tuple(sorted(files)) and "l_shaped_rack" in names
     for name in names:
         by_name = segplan.load_scenario(name)
-        by_path = segplan.load_scenario(ROOT / "scenarios" / f"{name}.json")
+        by_path = segplan.load_scenario(files[name])
         assert by_name.to_json() == by_path.to_json()
 
 
