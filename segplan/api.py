@@ -45,7 +45,9 @@ def _scenario_ds(scenario: Scenario) -> float:
     """:func:`characteristic_dimension` of a scenario, computed once (the paper's off-line step)."""
     ds = _DS_CACHE.get(scenario)
     if ds is None:
-        ds = characteristic_dimension(scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L)
+        ds = characteristic_dimension(
+            scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L, groups=scenario.outline_of
+        )
         _DS_CACHE[scenario] = ds
     return ds
 

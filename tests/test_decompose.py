@@ -124,3 +124,16 @@ def test_shapely_inputs():
         as_outlines(holed, "obstacles[0]")
     with pytest.raises(ValueError, match="LineString"):
         as_outlines(shapely.LineString([[0, 0], [1, 1]]), "obstacles[0]")
+
+
+def test_pieces_of_one_obstacle_are_not_neighbours_in_d_s():
+    """Heuristic (c)'s d_s: the gap between obstacles, not between pieces of one obstacle."""
+    from segplan.problem import characteristic_dimension
+
+    left, right = convex_pieces(L_SHAPE)  # touching pieces of the L
+    far = np.array([[7.0, 0.0], [8.0, 0.0], [8.0, 1.0], [7.0, 1.0]])  # 3 m right of the L
+    assert characteristic_dimension([left, right, far]) == 0.0  # pieces as obstacles: gap 0
+    assert characteristic_dimension([left, right, far], groups=[0, 0, 1]) == pytest.approx(3.0)
+    assert characteristic_dimension([far, left], groups=[0, 1]) == characteristic_dimension([far, left])
+    with pytest.raises(ValueError, match="groups"):
+        characteristic_dimension([left, right], groups=[0])
