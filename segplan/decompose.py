@@ -13,8 +13,8 @@ Method
 1. A polygon that :func:`segplan.geometry.check_convex_polygon` accepts is returned as
    the single piece, unchanged (convex input gives exactly the scenario it always gave).
 2. Otherwise the vertices are checked (shape, finite, no repeated vertex), then the ring
-   must be *simple* (shapely's ``is_valid``; a self-intersection is reported at the
-   vertex nearest to it) with nonzero area.
+   must be *simple* (shapely's ``is_valid``; a self-intersection is reported with the
+   vertices whose edges meet there) with nonzero area.
 3. shapely's constrained Delaunay triangulation (``shapely.constrained_delaunay_triangles``,
    GEOS >= 3.10, shapely >= 2.1) splits it into triangles on the input vertices (no new
    points, so every piece's vertices are input vertices, bit for bit).
@@ -118,8 +118,8 @@ def decompose(vertices, where: str = "polygon") -> tuple[np.ndarray, list[np.nda
         raise refusal
     scale = float(np.abs(v).max()) or 1.0
     d = v - v[0]
-    cross = d[:, 0, None] * d[None, :, 1] - d[:, 1, None] * d[None, :, 0]  # all zero iff collinear
-    if not np.any(np.abs(cross) > LENGTH_TOL * scale**2):
+    far = d[np.argmax(np.hypot(d[:, 0], d[:, 1]))]  # collinear iff every d is parallel to it
+    if not np.any(np.abs(far[0] * d[:, 1] - far[1] * d[:, 0]) > LENGTH_TOL * scale**2):
         raise ValueError(f"{where}: degenerate polygon, all vertices are collinear (zero area)")
     import shapely  # beyond the paper: shapely decomposes, the planner never calls it
 
@@ -202,17 +202,6 @@ def _drop_collinear(v: np.ndarray) -> np.ndarray:
     return v
 
 
-def _shared_edge(p: np.ndarray, q: np.ndarray) -> tuple[int, int] | None:
-    """Indices ``(i, j)``: edge ``p[i] -> p[i+1]`` is edge ``q[j+1] -> q[j]`` (both CCW), or None."""
-    n, m = len(p), len(q)
-    for i in range(n):
-        a, b = p[i], p[(i + 1) % n]
-        for j in range(m):
-            if np.array_equal(q[j], b) and np.array_equal(q[(j + 1) % m], a):
-                return i, j
-    return None
-
-
 def _glue(p: np.ndarray, q: np.ndarray, i: int, j: int) -> np.ndarray:
     """The ring of ``p`` and ``q`` glued along their shared edge (``p[i]->p[i+1]`` = ``q[j+1]->q[j]``)."""
     n, m = len(p), len(q)
@@ -223,28 +212,54 @@ def _glue(p: np.ndarray, q: np.ndarray, i: int, j: int) -> np.ndarray:
 
 
 def _merge(pieces: list[np.ndarray], where: str) -> list[np.ndarray]:
-    """Greedily merge neighbours (sharing an edge) while the union stays strictly convex."""
-    merged = True
-    while merged:
-        merged = False
-        for a in range(len(pieces)):
-            for b in range(a + 1, len(pieces)):
-                shared = _shared_edge(pieces[a], pieces[b])
-                if shared is None:
-                    continue
-                ring = _drop_collinear(_glue(pieces[a], pieces[b], *shared))
+    """Greedily merge neighbours (sharing an edge) while the union stays strictly convex.
+
+    One pass in a fixed order: each piece, edge by edge, is merged with the piece across
+    the edge if their union is strictly convex, and scans its edges again after every
+    merge, so that in the end no two neighbours can merge. Pieces share exact vertex
+    coordinates (the triangulation adds no points): a shared edge is found by its two end
+    points.
+    """
+    alive = dict(enumerate(pieces))
+    owner: dict = {}  # directed edge (a, b) -> (piece, index of a)
+
+    def ring(k):
+        return [tuple(x) for x in alive[k].tolist()]
+
+    def edges(k, add):
+        r = ring(k)
+        for i in range(len(r)):
+            key = (r[i], r[(i + 1) % len(r)])
+            if add:
+                owner[key] = (k, i)
+            else:
+                owner.pop(key, None)
+
+    for k in alive:
+        edges(k, True)
+    for a in range(len(pieces)):
+        if a not in alive:
+            continue
+        i = 0
+        while i < len(alive[a]):
+            r = ring(a)
+            across = owner.get((r[(i + 1) % len(r)], r[i]))  # the same edge, reversed
+            if across is not None and across[0] != a:
+                b, j = across
                 try:
-                    union = check_convex_polygon(ring)
+                    union = check_convex_polygon(_drop_collinear(_glue(alive[a], alive[b], i, j)))
                 except ValueError:
+                    union = None
+                if union is not None:
+                    edges(a, False)
+                    edges(b, False)
+                    del alive[b]
+                    alive[a] = union
+                    edges(a, True)
+                    i = 0  # a changed: try every edge again
                     continue
-                pieces[a] = union
-                del pieces[b]
-                merged = True
-                break
-            if merged:
-                break
-    out = []
-    for k, p in enumerate(pieces):
-        p = _drop_collinear(p)
-        out.append(check_convex_polygon(p, f"{where} convex piece {k}"))
-    return out
+            i += 1
+    return [
+        check_convex_polygon(_drop_collinear(p), f"{where} convex piece {n}")
+        for n, p in enumerate(alive.values())
+    ]
