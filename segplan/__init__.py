@@ -11,7 +11,7 @@ README's diagram; enforced by the import-linter contract in ``pyproject.toml``):
     search    search (A*), expansion (the paper's intermediate nodes), lattice, approach
     problem   problem, links, validity, path, metrics, primitives, clearance
     world     world, floors, collision, sweep
-    numerics  frame (above frame_exact), cost, geometry
+    numerics  frame (above frame_exact), cost, geometry, decompose (non-convex polygons)
     base      union, constants (the stored fits), romberg, pose, derivation, dubins
 """
 

@@ -99,7 +99,7 @@ def animate_path(
             plot_bounds(scenario.bounds, ax)
         if scenario.robot.half_width > 0:
             plot_polygons(scenario.enlarged, ax, facecolor="0.9", edgecolor="0.7", label=None)
-        plot_polygons(scenario.obstacles, ax)
+        plot_polygons(scenario.outlines, ax)
         plot_pose(scenario.start, L, ax, color="tab:green")
         plot_pose(scenario.goal, L, ax, color="tab:red")
     points = np.vstack((A, B))

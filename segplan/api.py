@@ -52,7 +52,9 @@ def _scenario_ds(scenario: Scenario) -> float:
     """:func:`characteristic_dimension` of a scenario, computed once (the paper's off-line step)."""
     ds = _DS_CACHE.get(scenario)
     if ds is None:
-        ds = characteristic_dimension(scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L)
+        ds = characteristic_dimension(
+            scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L, groups=scenario.outline_of
+        )
         _DS_CACHE[scenario] = ds
     return ds
 
@@ -75,8 +77,11 @@ def plan(
     ----------
     start, goal : (x, y, theta)
         Poses: rear-axle point A and heading (radians).
-    obstacles : sequence of (k, 2) arrays
-        Convex polygons (either orientation); enlarged by ``half_width`` off-line.
+    obstacles : sequence of (k, 2) arrays or shapely polygons
+        Simple polygons (either orientation; shapely ``Polygon`` / ``MultiPolygon``
+        objects too, without holes); a non-convex one is split into convex pieces
+        (:func:`segplan.decompose.convex_pieces`, beyond the paper); enlarged by
+        ``half_width`` off-line.
     L : float
         Robot length A->B (> 0).
     bounds : (xmin, ymin, xmax, ymax), optional

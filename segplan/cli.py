@@ -50,6 +50,9 @@ scenario file (JSON, lengths in metres, angles in degrees):
   {"L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
    "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
    "bounds": [xmin, ymin, xmax, ymax], "obstacles": [[[x, y], ...], ...]}
+  an obstacle is any simple polygon (its vertices in order, not closed); a
+  non-convex one (an L-shaped rack, a concave bay) is split into convex pieces
+  before planning; example: segplan plan l_shaped_rack
 
 output: cost, nodes (x, y in m, theta in deg), expansions, generated nodes, time.
 With --json, one JSON object on stdout instead. With --out, a figure with the

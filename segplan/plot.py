@@ -337,7 +337,7 @@ def plot_floor(
     plot_polygons(
         scenario.enlarged, ax, facecolor=enlarged[0], edgecolor=enlarged[1], label="enlarged obstacle"
     )
-    plot_polygons(scenario.obstacles, ax, facecolor=obstacles[0], edgecolor=obstacles[1], label="obstacle")
+    plot_polygons(scenario.outlines, ax, facecolor=obstacles[0], edgecolor=obstacles[1], label="obstacle")
     if poses:
         for pose in (scenario.start, scenario.goal):
             plot_pose(pose, scenario.L, ax, color=pose_color)

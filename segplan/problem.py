@@ -142,15 +142,23 @@ def polygon_gap(p: np.ndarray, q: np.ndarray) -> float:
     return float(min(d1, d2))
 
 
-def characteristic_dimension(polygons, bounds=None, fallback: float = 1.0) -> float:
+def characteristic_dimension(polygons, bounds=None, fallback: float = 1.0, groups=None) -> float:
     """``d_s`` of heuristic (c): the median gap from each obstacle to its nearest neighbour.
 
     Neighbours are the other obstacles and the walls (``bounds``). Without obstacles the
     shorter side of the bounds, or ``fallback`` without bounds either. Exact gaps
     (:func:`polygon_gap`) are computed only for pairs whose circumscribed circles are
     nearer than the best gap found so far (the circle gap is a lower bound).
+
+    ``groups``: optional, ``groups[i]`` the obstacle that polygon ``i`` is a convex piece of
+    (``Scenario.outline_of``, beyond the paper); the pieces of one obstacle are not each
+    other's neighbours and an obstacle's gap is the least of its pieces'. None: every
+    polygon is an obstacle of its own.
     """
     polys = [np.asarray(p, dtype=float) for p in polygons]
+    group = list(range(len(polys))) if groups is None else [int(g) for g in groups]
+    if len(group) != len(polys):
+        raise ValueError(f"groups must name one obstacle per polygon: {len(group)} for {len(polys)} polygons")
     if not polys:
         if bounds is None:
             return float(fallback)
@@ -159,7 +167,7 @@ def characteristic_dimension(polygons, bounds=None, fallback: float = 1.0) -> fl
     radii = np.array([np.max(np.hypot(*(p - c).T)) for p, c in zip(polys, centres, strict=True)])
     circle_gap = np.hypot(*(centres[:, None, :] - centres[None, :, :]).transpose(2, 0, 1))
     circle_gap -= radii[:, None] + radii[None, :]
-    gaps = []
+    gaps: dict[int, float] = {}
     for i, p in enumerate(polys):
         best = math.inf
         if bounds is not None:
@@ -167,11 +175,11 @@ def characteristic_dimension(polygons, bounds=None, fallback: float = 1.0) -> fl
             best = min(p[:, 0].min() - xmin, p[:, 1].min() - ymin, xmax - p[:, 0].max(), ymax - p[:, 1].max())
             best = max(best, 0.0)
         for j in np.argsort(circle_gap[i]):
-            if j == i:
+            if group[j] == group[i]:
                 continue
             if circle_gap[i, j] >= best:
                 break
             best = min(best, polygon_gap(p, polys[j]))
-        if math.isfinite(best):
-            gaps.append(best)
-    return float(np.median(gaps)) if gaps else float(fallback)
+        gaps[group[i]] = min(best, gaps.get(group[i], math.inf))
+    finite = [g for g in gaps.values() if math.isfinite(g)]
+    return float(np.median(finite)) if finite else float(fallback)

@@ -10,7 +10,12 @@ the walls of a rectangular world move inwards by ``half_width``. Forward motion 
 with the steering angle of the front wheel bounded by ``max_steer``: the rear path's
 curvature stays within ``tan(max_steer) / L`` (bicycle model).
 
-Obstacles are convex polygons, ``(k, 2)`` vertex arrays, stored counter-clockwise.
+Obstacles are simple polygons, ``(k, 2)`` vertex arrays or shapely ``Polygon`` /
+``MultiPolygon`` objects (no holes). The planner sees convex polygons, the paper's
+obstacles: a non-convex one is split into convex pieces by
+:func:`segplan.decompose.convex_pieces` (beyond the paper); ``Scenario.obstacles`` holds
+the pieces, ``Scenario.outlines`` the polygons as given (for drawing and files). Convex
+polygons are their own single piece, stored counter-clockwise.
 
 Scenario files (JSON)
 ---------------------
@@ -27,9 +32,11 @@ Lengths in metres. **Angles in files are degrees**: ``theta`` of start and goal 
 Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width`` 0,
 ``max_steer_deg`` 45, ``bounds`` none. Any other key is an error, so is a repeated key.
 Polygons may be given in either orientation and are stored counter-clockwise; nothing
-else is changed. A vertex that is repeated (also a closing copy of the first one) or
-collinear with its neighbours is an error, as are non-convex and self-intersecting
-polygons, NaN/Infinity literals and numbers that overflow to infinity.
+else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
+``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A vertex that is
+repeated (also a closing copy of the first one) is an error, as are self-intersecting
+and zero-area polygons, a vertex collinear with its neighbours in a convex polygon,
+NaN/Infinity literals and numbers that overflow to infinity.
 
 A pose collides when its segment A->B touches an enlarged obstacle (closed sets:
 touching is a collision); it is out of bounds unless the whole segment lies strictly
@@ -51,10 +58,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .decompose import as_outlines, decompose
 from .geometry import (
     DEFAULT_MAX_ARC,
     check_bounds,
-    check_convex_polygon,
     enlarge_polygon,
     finite_number,
     pose_conflict,
@@ -153,13 +160,19 @@ class Scenario:
     bounds : tuple (xmin, ymin, xmax, ymax) or None
         The walls, or None for an unbounded world.
     obstacles : tuple of ndarray (k, 2)
-        The obstacles as given, counter-clockwise, read-only.
+        The convex obstacles, counter-clockwise, read-only: the polygons as given, a
+        non-convex one replaced by its convex pieces (:func:`segplan.decompose.convex_pieces`).
     enlarged : tuple of ndarray (n, 2)
-        The obstacles enlarged by ``robot.half_width`` (:func:`enlarge_polygon`), the
+        ``obstacles`` enlarged by ``robot.half_width`` (:func:`enlarge_polygon`), the
         polygons the segment is planned among; read-only.
     name, description : str
     path : Path or None
         The file it was loaded from.
+    outlines : tuple of ndarray (k, 2)
+        The obstacles as given (counter-clockwise, read-only), possibly non-convex; the
+        same arrays as ``obstacles`` when every obstacle is convex. Drawn and saved.
+    outline_of : tuple of int
+        ``outline_of[i]``: the index in ``outlines`` of the piece ``obstacles[i]``.
     """
 
     robot: Robot
@@ -171,6 +184,8 @@ class Scenario:
     name: str = ""
     description: str = ""
     path: Path | None = field(default=None)
+    outlines: tuple[np.ndarray, ...] = ()
+    outline_of: tuple[int, ...] = ()
 
     @property
     def L(self) -> float:
@@ -212,7 +227,7 @@ class Scenario:
         out["start"] = [self.start.x, self.start.y, math.degrees(self.start.theta)]
         out["goal"] = [self.goal.x, self.goal.y, math.degrees(self.goal.theta)]
         out["bounds"] = None if self.bounds is None else list(self.bounds)
-        out["obstacles"] = [p.tolist() for p in self.obstacles]
+        out["obstacles"] = [p.tolist() for p in self.outlines]
         return out
 
     def to_json(self) -> str:
@@ -278,23 +293,40 @@ def make_scenario(
         raise ScenarioError(
             f"{source}: obstacles must be a sequence of polygons, got {_brief(obstacles)}"
         ) from None
-    polys = []
-    for i, p in enumerate(items):
+    polys, outlines, outline_of, labels = [], [], [], []
+    for i, item in enumerate(items):
+        where = f"{source}: obstacles[{i}]"
         try:
-            poly = check_convex_polygon(p, where=f"{source}: obstacles[{i}]")
+            given = as_outlines(item, where)
         except ValueError as exc:
             raise ScenarioError(str(exc)) from None
-        if np.abs(poly).max() > WORLD_LIMIT:
-            j = int(np.flatnonzero(np.abs(np.asarray(p, dtype=float)).max(axis=1) > WORLD_LIMIT)[0])
-            raise ScenarioError(f"{source}: obstacles[{i}] vertex {j}: coordinates exceed +-{WORLD_LIMIT:g}")
-        poly.flags.writeable = False
-        polys.append(poly)
+        for j, p in enumerate(given):
+            at = where if len(given) == 1 else f"{where} part {j}"
+            try:
+                outline, pieces = decompose(p, where=at)
+            except ValueError as exc:
+                raise ScenarioError(str(exc)) from None
+            if np.abs(outline).max() > WORLD_LIMIT:  # the pieces' vertices are the outline's
+                k = int(np.flatnonzero(np.abs(np.asarray(p, dtype=float)).max(axis=1) > WORLD_LIMIT)[0])
+                raise ScenarioError(f"{at} vertex {k}: coordinates exceed +-{WORLD_LIMIT:g}")
+            for q in (outline, *pieces):  # a convex outline is its own piece, the same array
+                q.flags.writeable = False
+            outline_of.extend([len(outlines)] * len(pieces))
+            label = f"obstacles[{i}]" + ("" if len(given) == 1 else f" part {j}")
+            labels.extend(
+                label if len(pieces) == 1 else f"{label} (its convex piece {n})" for n in range(len(pieces))
+            )
+            outlines.append(outline)
+            polys.extend(pieces)
     enlarged = []
     for p in polys:
         e = enlarge_polygon(p, robot.half_width, max_arc)
         e.flags.writeable = False
         enlarged.append(e)
-    sc = Scenario(robot, start_p, goal_p, bounds, tuple(polys), tuple(enlarged), name, description, path)
+    sc = Scenario(
+        robot, start_p, goal_p, bounds, tuple(polys), tuple(enlarged), name, description, path,
+        tuple(outlines), tuple(outline_of),
+    )  # fmt: skip
     for label, pose in (("start", start_p), ("goal", goal_p)):
         conflict = sc.pose_conflict(pose)
         if conflict == "bounds":
@@ -303,6 +335,7 @@ def make_scenario(
                 f"must lie strictly inside the bounds shrunk by half_width, {list(sc.free_bounds)}"
             )
         if conflict is not None:
+            conflict = labels[int(conflict[len("obstacles[") : -1])]  # the obstacle as given
             raise ScenarioError(
                 f"{source}: {label} pose {_show(pose)} collides with {conflict} "
                 f"enlarged by half_width={robot.half_width} (segment of length L={robot.L})"
@@ -478,12 +511,13 @@ def load_scenario(path) -> Scenario:
     """
     p = Path(path)
     if isinstance(path, str) and not p.suffix and p.name == path and not p.exists():
-        if path not in shipped_scenarios():
+        shipped = _shipped_files()
+        if path not in shipped:
             raise ScenarioError(
-                f"{path!r} is neither a file nor a shipped scenario (one of {', '.join(shipped_scenarios())})"
+                f"{path!r} is neither a file nor a shipped scenario (one of {', '.join(sorted(shipped))})"
             )
-        resource = resources.files("segplan") / "scenarios" / f"{path}.json"
-        return loads_scenario(resource.read_bytes(), source=f"segplan/scenarios/{path}.json")
+        relative, resource = shipped[path]
+        return loads_scenario(resource.read_bytes(), source=f"segplan/scenarios/{relative}")
     try:
         raw = p.read_bytes()
     except OSError as exc:
@@ -491,14 +525,32 @@ def load_scenario(path) -> Scenario:
     return loads_scenario(raw, source=str(p), path=p)
 
 
+#: Sub-folder of the shipped scenarios for floors beyond the paper (non-convex obstacles,
+#: issue 14): shipped and loadable by name like the others; the paper's chapters, which read
+#: the top folder ``scenarios/*.json``, do not see them.
+BEYOND_THE_PAPER = "beyond_the_paper"
+
+
+def _shipped_files() -> dict:
+    """``{name: (path relative to scenarios/, resource)}`` of every shipped scenario."""
+    folder = resources.files("segplan") / "scenarios"
+    out = {}
+    for sub, prefix in ((folder, ""), (folder / BEYOND_THE_PAPER, f"{BEYOND_THE_PAPER}/")):
+        if sub.is_dir():
+            for f in sub.iterdir():
+                if f.name.endswith(".json"):
+                    out[f.name[: -len(".json")]] = (prefix + f.name, f)
+    return out
+
+
 def shipped_scenarios() -> tuple[str, ...]:
     """Names of the scenarios shipped with segplan (package data), sorted.
 
     ``load_scenario(name)`` reads one of them; in a clone of the repository they are the
-    files of ``scenarios/``, which ``segplan/scenarios`` links to.
+    files of ``scenarios/`` and ``scenarios/beyond_the_paper/`` (non-convex obstacles),
+    which ``segplan/scenarios`` links to.
     """
-    folder = resources.files("segplan") / "scenarios"
-    return tuple(sorted(f.name[: -len(".json")] for f in folder.iterdir() if f.name.endswith(".json")))
+    return tuple(sorted(_shipped_files()))
 
 
 def save_scenario(scenario: Scenario, path) -> Path:
@@ -521,7 +573,7 @@ def with_clearance(scenario: Scenario, clearance: float) -> Scenario:
     grown = Robot(robot.L, robot.half_width + float(clearance), robot.max_steer)
     try:
         return make_scenario(
-            grown, scenario.start, scenario.goal, scenario.obstacles, scenario.bounds,
+            grown, scenario.start, scenario.goal, scenario.outlines, scenario.bounds,
             name=scenario.name, description=scenario.description, path=scenario.path,
             source=f"clearance={clearance:g}",
         )  # fmt: skip

@@ -23,10 +23,12 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def test_shipped_scenarios_are_the_repository_files():
     names = segplan.shipped_scenarios()
-    assert names == tuple(sorted(p.stem for p in (ROOT / "scenarios").glob("*.json")))
+    files = {p.stem: p for p in (ROOT / "scenarios").glob("*.json")}
+    files |= {p.stem: p for p in (ROOT / "scenarios" / "beyond_the_paper").glob("*.json")}
+    assert names == tuple(sorted(files)) and "l_shaped_rack" in names
     for name in names:
         by_name = segplan.load_scenario(name)
-        by_path = segplan.load_scenario(ROOT / "scenarios" / f"{name}.json")
+        by_path = segplan.load_scenario(files[name])
         assert by_name.to_json() == by_path.to_json()
 
 
@@ -129,6 +131,7 @@ def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
     wheel = next((tmp_path / "dist").glob("segplan-*.whl"))
     with zipfile.ZipFile(wheel) as zf:
         assert "segplan/scenarios/fig5_example1.json" in zf.namelist()
+        assert "segplan/scenarios/beyond_the_paper/l_shaped_rack.json" in zf.namelist()
     env_dir = tmp_path / "venv"
     venv.EnvBuilder(with_pip=True).create(env_dir)
     py = env_dir / "bin" / "python"
@@ -151,3 +154,8 @@ def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
     where = subprocess.run([py, "-c", "import segplan; print(segplan.__file__)"], capture_output=True,
                            text=True, cwd=tmp_path, env=env, check=True).stdout  # fmt: skip
     assert where.startswith(site), where  # the installed copy, not this tree
+    rack = subprocess.run(
+        [env_dir / "bin" / "segplan", "plan", "l_shaped_rack", "--json"],
+        capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300, check=False,
+    )  # fmt: skip
+    assert rack.returncode == 0 and json.loads(rack.stdout)["found"] is True, rack.stderr[-2000:]

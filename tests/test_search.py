@@ -189,7 +189,7 @@ def test_limits_stop_the_search():
         ({"max_expansions": 0}, "max_expansions"),
         ({"time_limit": -1.0}, "time_limit"),
         ({"obstacles": [[[0.0, 0.0], [1.0, 0.0]]]}, "3 vertices"),
-        ({"obstacles": [[[3, 0], [5, 0], [4, 0.5], [5, 2], [3, 2]]]}, "convex"),
+        ({"obstacles": [[[3, 0], [5, 2], [5, 0], [3, 2]]]}, "not a simple polygon"),  # a bow tie
         ({"obstacles": [[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]]}, "start"),
         ({"bounds": (0.0, 0.0, 1.0)}, "bounds"),
     ],

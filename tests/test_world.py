@@ -417,7 +417,7 @@ CASES = [
     (("obstacles", 1, 2), [8], r"obstacles\[1\] vertex 2 must have 2 numbers"),
     (("obstacles", 1, 2, 0), "8", r"obstacles\[1\] vertex 2\[0\] must be a number"),
     (("obstacles", 1, 2), [9, 0.5], r"obstacles\[1\]: vertex 2 repeats vertex 1"),
-    (("obstacles", 0, 2), [5, 2.5], r"obstacles\[0\]: not convex.*vertex 2"),
+    (("obstacles", 0, 2), [3, 3], r"obstacles\[0\]: not a simple .* edges leaving vertex 1 and vertex 3"),
     (("obstacles", 0, 1), [5, 3], r"obstacles\[0\]: vertex 1 \[5.0, 3.0\] is collinear"),
     (("obstacles", 1), [[7, 0.5], [9, 0.5]], r"obstacles\[1\]: a polygon needs at least 3 vertices"),
     (("start",), [4.5, 3.0, 0], r"start pose .* collides with obstacles\[0\]"),
@@ -655,3 +655,84 @@ def test_public_names():
     for name in ("Robot", "Scenario", "ScenarioError", "load_scenario", "save_scenario", "random_world"):
         assert name in segplan.__all__
     assert issubclass(ScenarioError, ValueError)
+
+
+# -- non-convex obstacles (issue 14): split into convex pieces ---------------------------
+L_RACK = SCENARIOS / "beyond_the_paper" / "l_shaped_rack.json"
+L_SHAPE = [[4, 2], [6, 2], [6, 3], [5, 3], [5, 5], [4, 5]]  # an L in base_dict's world
+
+
+def test_l_shaped_rack_is_shipped_loads_round_trips_and_keeps_its_outlines(tmp_path):
+    sc = load_scenario("l_shaped_rack")
+    assert sc.to_json() == load_scenario(L_RACK).to_json() == L_RACK.read_text()
+    assert len(sc.outlines) == 3 and len(sc.obstacles) > 3  # the rack and the bay are split
+    assert sc.outline_of == tuple(sorted(sc.outline_of)) and set(sc.outline_of) == {0, 1, 2}
+    for k, outline in enumerate(sc.outlines):
+        pieces = [Polygon(p) for p, o in zip(sc.obstacles, sc.outline_of, strict=True) if o == k]
+        assert shapely.union_all(pieces).symmetric_difference(Polygon(outline)).area < 1e-9
+    assert len(sc.enlarged) == len(sc.obstacles)
+    again = load_scenario(save_scenario(sc, tmp_path / "again.json"))
+    assert again.to_dict() == sc.to_dict()
+    assert all(np.array_equal(a, b) for a, b in zip(again.obstacles, sc.obstacles, strict=True))
+
+
+def test_the_default_planner_solves_the_l_shaped_rack_without_collision():
+    sc = load_scenario("l_shaped_rack")
+    plan = segplan.plan_scenario(sc)
+    m = segplan.measure_scenario_path(segplan.plan_poses(plan), sc)
+    assert not m.collides and m.clearance > 0.0
+    # the bay's convex hull holds the goal: only the non-convex obstacle leaves it free
+    hull = Polygon(sc.outlines[1]).convex_hull
+    assert hull.contains(Point(sc.goal.x, sc.goal.y))
+
+
+def test_convex_obstacles_give_the_same_scenario_as_before():
+    sc = scenario_from_dict(base_dict())
+    assert sc.outlines == sc.obstacles and all(a is b for a, b in zip(sc.outlines, sc.obstacles, strict=True))
+    assert sc.outline_of == (0, 1)
+
+
+def test_non_convex_file_obstacle_is_split_and_a_collision_names_it_and_its_piece(tmp_path):
+    d = base_dict()
+    d["obstacles"][0] = L_SHAPE
+    sc = scenario_from_dict(d)
+    assert len(sc.outlines) == 2 and len(sc.obstacles) == 3 and sc.outline_of == (0, 0, 1)
+    assert sc.to_dict()["obstacles"][0] == [[float(x), float(y)] for x, y in L_SHAPE]
+    d["start"] = [4.2, 4.5, 0.0]  # in the L's upright
+    f = tmp_path / "bad.json"
+    f.write_text(json.dumps(d))
+    with pytest.raises(ScenarioError, match=r"start pose .* collides with obstacles\[0\] \(its convex piece"):
+        load_scenario(f)
+
+
+def test_shapely_obstacles_in_make_scenario_and_plan():
+    robot = Robot(1.0, 0.2, math.radians(40))
+    start, goal = (1.0, 1.0, 0.0), (8.0, 4.0, math.radians(90))
+    as_lists = make_scenario(robot, start, goal, [L_SHAPE], (0, 0, 10, 6))
+    as_shapely = make_scenario(robot, start, goal, [Polygon(L_SHAPE)], (0, 0, 10, 6))
+    assert as_shapely.to_json() == as_lists.to_json()
+    multi = shapely.MultiPolygon([Polygon(L_SHAPE), shapely.box(7, 0.5, 9, 2)])
+    sc = make_scenario(robot, start, goal, [multi], (0, 0, 10, 6))
+    assert len(sc.outlines) == 2
+    plan = segplan.plan(start, goal, [multi], 1.0, (0, 0, 10, 6), half_width=0.2, max_steer=math.radians(40))
+    assert not segplan.measure_scenario_path(segplan.plan_poses(plan), sc).collides
+
+
+@pytest.mark.parametrize(
+    ("obstacle", "pattern"),
+    [
+        (
+            shapely.Polygon([[3, 1], [7, 1], [7, 5], [3, 5]], [[[4, 2], [5, 2], [5, 3], [4, 3]]]),
+            r"<python>: obstacles\[0\]: a polygon with 1 hole\(s\) is not supported",
+        ),
+        (shapely.LineString([[3, 1], [7, 1]]), r"obstacles\[0\]: a LineString is not an obstacle"),
+        ([[3, 1], [5, 3], [5, 1], [3, 3]], r"obstacles\[0\]: not a simple polygon .* vertex"),
+        (
+            shapely.MultiPolygon([shapely.box(3, 1, 4, 2), Polygon([[5, 1], [6, 2], [6, 1], [5, 2]])]),
+            r"obstacles\[0\] part 1: not a simple polygon",
+        ),
+    ],
+)
+def test_holes_and_self_intersections_are_scenario_errors(obstacle, pattern):
+    with pytest.raises(ScenarioError, match=pattern):
+        make_scenario(Robot(1.0), (1.0, 1.0, 0.0), (8.0, 4.0, 0.0), [obstacle], (0, 0, 10, 6))
