@@ -199,7 +199,7 @@ def test_verdicts_follow_the_criteria():
     claims = rb.claims(rb.verdicts(rb.compare(seg, ompl)), {"invalid plans": "f2"})
     assert list(claims.columns) == ["claim", "paper", "ours", "criterion", "verdict", "why"]
     assert len(claims) == len(rb.TARGETS)
-    row = claims[claims["claim"] == "issue 12: invalid plans"].iloc[0]
+    row = claims[claims["claim"] == "beyond the paper: invalid plans"].iloc[0]
     assert row["why"] == "f2" and row["verdict"] == "not reproduced" and row["ours"] == "1 of 3 plans"
 
 

@@ -1,4 +1,4 @@
-"""Robustness of segplan on random and hard floors, against OMPL's BIT* (issue 12, item 5).
+"""Robustness of segplan on random and hard floors, against OMPL's BIT* (beyond the paper).
 
 The floors are :mod:`segplan.studies.floors` (:func:`floor_groups`): 200 random 20 x 12 m
 floors of each heading kind (``any``, ``natural``), the hard cases, six 160 x 96 m floors
@@ -13,7 +13,7 @@ length reference (:func:`reference`).
 
 **segplan** (:func:`solve_segplan`, computed when asked): :func:`segplan.plan_scenario` per
 floor; :func:`compare` adds the ratio to OMPL's length, :func:`verdicts` judges each target
-of issue 12 (:data:`TARGETS`) with :func:`segplan.studies.verdicts.judge`.
+of the planner (:data:`TARGETS`) with :func:`segplan.studies.verdicts.judge`.
 
 **Deterministic results, varying times.** The study bounds the default planner by
 ``max_expansions=`` :data:`MAX_EXPANSIONS` (the same on every machine) and passes
@@ -528,7 +528,7 @@ def compare(seg: pd.DataFrame, ompl: pd.DataFrame) -> pd.DataFrame:
 
 
 def verdicts(table: pd.DataFrame) -> pd.DataFrame:
-    """Each target of issue 12 (:data:`TARGETS`) judged on :func:`compare`'s table:
+    """Each target of the planner (:data:`TARGETS`) judged on :func:`compare`'s table:
     ``target``, ``criterion`` (its text), ``measured``, ``value``, ``verdict`` (the word of
     :func:`segplan.studies.verdicts.judge`), ``judged`` (the
     :class:`~segplan.studies.verdicts.Verdict`) and ``timed`` (the value is a time, so the
@@ -580,8 +580,8 @@ def claims(verdict: pd.DataFrame, why: dict[str, str] | None = None) -> pd.DataF
     why = dict(why or {})
     return claims_table(
         {
-            "claim": f"issue 12: {v['target']}",
-            "paper": "beyond the paper (issue 12's target)",
+            "claim": f"beyond the paper: {v['target']}",
+            "paper": "not in the paper (our target)",
             "ours": v["measured"],
             "verdict": v["judged"],
             "why": why.get(v["target"], ""),
