@@ -19,6 +19,13 @@ Run, niced (the machine is shared)::
     PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --sample 40 --json mutation.json
 
 Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers.
+
+The stored run is ``benchmarks/results/mutation.json`` (its ``meta`` says when, on which
+commit, with which command and seed); the survivors judged equivalent are listed, each with
+its reason, in ``benchmarks/results/mutation_equivalent.md``. The README's kill rates are
+written from those two files, never typed::
+
+    python benchmarks/mutation.py --readme     # rewrite the README's block; runs nothing
 """
 
 from __future__ import annotations
@@ -48,7 +55,12 @@ TARGETS = {
     "search": ["tests/test_search_oracles.py", "tests/test_search.py"],
     "problem": ["tests/test_search_oracles.py", "tests/test_search.py"],
     "expansion": ["tests/test_expansion.py", "tests/test_fast_paths.py", "tests/test_search_oracles.py"],
-    "links": ["tests/test_fast_paths.py", "tests/test_expansion.py", "tests/test_search_oracles.py"],
+    "links": [
+        "tests/test_fast_paths.py",
+        "tests/test_expansion.py",
+        "tests/test_search_oracles.py",
+        "tests/test_search.py",  # the link observer
+    ],
     "refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
     # collision
     "validity": [
@@ -70,6 +82,11 @@ TARGETS = {
     "frame": ["tests/test_frame.py"],
     "frame_exact": ["tests/test_frame.py"],
 }
+
+RESULTS = ROOT / "benchmarks" / "results"
+STORED = RESULTS / "mutation.json"
+EQUIVALENT = RESULTS / "mutation_equivalent.md"
+START, END = "<!-- mutation:start -->", "<!-- mutation:end -->"
 
 KILLED = {1, 3}  # pytest failed (3: an internal error, counted as a kill by mutmut)
 TIMEOUT = {36, -24, 24, 152, 255}
@@ -167,6 +184,75 @@ def run_module(module: str, sample: int, seed: int, python: str, workers: int, s
     return result
 
 
+def equivalent_mutants(path: Path = EQUIVALENT) -> set[str]:
+    """Names of the mutants judged equivalent: each list item of the file starts with one."""
+    return set(re.findall(r"^- `([^`]+)`", path.read_text(), flags=re.MULTILINE))
+
+
+def summary(stored: dict, equivalent: set[str]) -> list[dict]:
+    """Per module: sample, killed (timeouts included), equivalent, real survivors, kill rate.
+
+    The kill rate excludes the equivalent mutants: ``killed / (sample - equivalent)``.
+    """
+    rows = []
+    for r in stored["results"]:
+        eq = [n for n in r["survivors"] if n in equivalent]
+        live = [n for n in r["survivors"] if n not in equivalent]
+        killed = r["killed"] + r["timeout"]
+        judged = r["sample"] - r["other"] - len(eq)
+        rows.append(
+            {
+                "module": r["module"],
+                "mutants": r["mutants"],
+                "sample": r["sample"],
+                "killed": killed,
+                "equivalent": len(eq),
+                "survived": live,
+                "uncovered": r["no_tests"],
+                "kill_rate": killed / judged if judged else float("nan"),
+            }
+        )
+    return rows
+
+
+def readme_block(stored: dict, equivalent: set[str]) -> str:
+    """The README's table of kill rates, from the stored run and the equivalent list."""
+    meta, rows = stored["meta"], summary(stored, equivalent)
+    lines = [
+        f"Measured on {meta['when']} at commit `{meta['commit'][:12]}`, mutmut {meta['mutmut']}, "
+        f"seed {meta['seed']}, {meta['sample_per_module']} random mutants per module, by "
+        f"`{meta['command']}` (stored in `benchmarks/results/mutation.json`; equivalent mutants, "
+        "each with its reason, in `benchmarks/results/mutation_equivalent.md`; this block is "
+        "written by `python benchmarks/mutation.py --readme`).",
+        "",
+        "| module | mutants | sampled | killed | equivalent | survived | kill rate |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for r in rows:
+        lines.append(
+            f"| `{r['module']}` | {r['mutants']} | {r['sample']} | {r['killed']} | {r['equivalent']} "
+            f"| {len(r['survived'])} | {100 * r['kill_rate']:.0f} % |"
+        )
+    killed = sum(r["killed"] for r in rows)
+    judged = sum(r["sample"] - r["equivalent"] for r in rows)
+    sampled = sum(r["sample"] for r in rows)
+    lines += [
+        "",
+        f"In all: {killed} of {judged} non-equivalent mutants killed ({100 * killed / judged:.1f} %) "
+        f"in a sample of {sampled} (target: at least 90 % of at least 200).",
+    ]
+    return "\n".join(lines)
+
+
+def write_readme(readme: Path = ROOT / "README.md") -> None:
+    stored = json.loads(STORED.read_text())
+    text = readme.read_text()
+    head, rest = text.split(START, 1)
+    _, tail = rest.split(END, 1)
+    block = readme_block(stored, equivalent_mutants())
+    readme.write_text(f"{head}{START}\n{block}\n{END}{tail}")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--modules", nargs="+", default=list(TARGETS), choices=list(TARGETS))
@@ -177,7 +263,11 @@ def main(argv=None) -> int:
     parser.add_argument("--json", type=Path, help="write the results here")
     parser.add_argument("--show", action="store_true", help="keep the survivors' diffs")
     parser.add_argument("--log", type=Path, default=Path(tempfile.gettempdir()) / "segplan-mutmut.log")
+    parser.add_argument("--readme", action="store_true", help="only rewrite the README's block")
     args = parser.parse_args(argv)
+    if args.readme:
+        write_readme()
+        return 0
     meta = {
         "when": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
         "host": os.uname().nodename,

@@ -192,3 +192,15 @@ def test_small_heuristic_batches_use_the_scalar_path():
         u = links.union(p0, p1)
         geo = intrinsic(p0, p1)
         assert u.alpha == pytest.approx(heuristic_alpha(geo.d, geo.phi0, geo.phi1, ws.L), abs=1e-12)
+
+
+@pytest.mark.parametrize("origin", [(0.0, 0.0), (1e3, 0.0), (0.0, -1e3), (-1e3, 1e3)])
+def test_link_model_coincidence_tolerance(origin):
+    """Points closer than 1e-9 x max(1, |coordinates|) have no union; a little farther, one."""
+    links = LinkModel(Workspace([], 1.0, None, 1.0))
+    scale = max(1.0, *map(abs, origin))
+    p0 = Pose(origin[0], origin[1], 0.0)
+    for factor, exists in ((0.5, False), (1.5, True)):
+        step = factor * 1e-9 * scale
+        for p1 in (Pose(origin[0] + step, origin[1], 0.0), Pose(origin[0], origin[1] + step, math.pi / 2)):
+            assert (links.union(p0, p1) is not None) == exists, (p1, factor)
