@@ -68,6 +68,7 @@ TARGETS = {
         "tests/test_fast_paths.py",
         "tests/test_refine_oracles.py",
         "tests/test_refine.py",
+        "tests/test_search_oracles.py::test_collision_counters_pinned",  # the shortcuts' counters
     ],
     "collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
