@@ -138,7 +138,10 @@ def _mutmut_version(python: str) -> str:
     return subprocess.run([python, "-c", code], capture_output=True, text=True).stdout.strip()
 
 
-def run_module(module: str, sample: int, seed: int, python: str, workers: int, show: bool, log) -> dict:
+def run_module(
+    module: str, sample: int, seed: int, python: str, workers: int, show: bool, log, only=None
+) -> dict:
+    """Run a random sample of ``module``'s mutants (or the mutants named in ``only``)."""
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{module}-") as tmp:
         tmp = Path(tmp)
@@ -150,7 +153,13 @@ def run_module(module: str, sample: int, seed: int, python: str, workers: int, s
         names = sorted(_meta(tmp, module))
         if not names:
             raise RuntimeError(f"mutmut generated no mutants for {module} (see the log)")
-        chosen = sorted(random.Random(f"{seed}:{module}").sample(names, min(sample, len(names))))
+        if only is None:
+            chosen = sorted(random.Random(f"{seed}:{module}").sample(names, min(sample, len(names))))
+        else:
+            missing = sorted(set(only) - set(names))
+            if missing:
+                raise RuntimeError(f"{module}: no such mutants (the code changed?): {missing}")
+            chosen = sorted(only)
         # 2. run the sample
         _mutmut(["run", "--max-children", str(workers), *chosen], tmp, python, log)
         codes = _meta(tmp, module)
@@ -254,6 +263,47 @@ def write_readme(readme: Path = ROOT / "README.md") -> None:
     readme.write_text(f"{head}{START}\n{block}\n{END}{tail}")
 
 
+def rerun_survivors(args) -> int:
+    """Run the stored survivors of ``args.modules`` again and record which are now killed.
+
+    Tests are only ever added between the two runs (the package is unchanged), so a mutant
+    killed in the stored run stays killed; only the survivors need to run again. The
+    re-run's provenance is kept beside the first run's, per module.
+    """
+    stored = json.loads(args.json.read_text())
+    rerun = {
+        "when": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+        "commit": _commit(),
+        "command": " ".join(["python", *sys.argv]),
+    }
+    stored["meta"].setdefault("reruns", []).append(rerun)
+    with open(args.log, "w") as log:
+        for r in stored["results"]:
+            if r["module"] not in args.modules or not r["survivors"]:
+                continue
+            again = run_module(
+                r["module"], 0, args.seed, args.python, args.workers, args.show, log, only=r["survivors"]
+            )
+            newly = [n for n in r["survivors"] if n not in again["survivors"]]
+            r["killed"] += again["killed"]
+            r["timeout"] += again["timeout"]
+            r["other"] += again["other"]
+            r["unclassified"] += again["unclassified"]
+            r["survivors"] = again["survivors"]
+            r["survived"] = len(again["survivors"])
+            decided = r["sample"] - r["other"]
+            r["kill_rate"] = (r["killed"] + r["timeout"]) / decided if decided else float("nan")
+            if "diffs" in r:
+                r["diffs"] = {n: d for n, d in r["diffs"].items() if n in r["survivors"]}
+            r.setdefault("reruns", []).append({**rerun, "killed_now": newly, "seconds": again["seconds"]})
+            total = len(newly) + r["survived"]
+            print(f"{r['module']:10s} re-run of {total} survivors: {len(newly)} now killed")
+            for name in r["survivors"]:
+                print(f"    still survives: {name}")
+            args.json.write_text(json.dumps(stored, indent=1) + "\n")
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--modules", nargs="+", default=list(TARGETS), choices=list(TARGETS))
@@ -265,10 +315,17 @@ def main(argv=None) -> int:
     parser.add_argument("--show", action="store_true", help="keep the survivors' diffs")
     parser.add_argument("--log", type=Path, default=Path(tempfile.gettempdir()) / "segplan-mutmut.log")
     parser.add_argument("--readme", action="store_true", help="only rewrite the README's block")
+    parser.add_argument(
+        "--rerun-survivors",
+        action="store_true",
+        help="run the survivors stored in --json again (after tests were added) and update it",
+    )
     args = parser.parse_args(argv)
     if args.readme:
         write_readme()
         return 0
+    if args.rerun_survivors:
+        return rerun_survivors(args)
     meta = {
         "when": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
         "host": os.uname().nodename,
