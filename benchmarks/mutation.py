@@ -234,6 +234,16 @@ def readme_block(stored: dict, equivalent: set[str]) -> str:
         f"`{meta['command']}` (stored in `benchmarks/results/mutation.json`; equivalent mutants, "
         "each with its reason, in `benchmarks/results/mutation_equivalent.md`; this block is "
         "written by `python benchmarks/mutation.py --readme`).",
+    ]
+    reruns = sorted({(r["when"], r["commit"]) for m in stored["results"] for r in m.get("reruns", [])})
+    if reruns:
+        when = ", ".join(f"on {w} at commit `{c[:12]}`" for w, c in reruns)
+        lines[0] += (
+            f" The survivors of the modules that got new tests were then run again ({when}: "
+            "`--rerun-survivors`) with the tests "
+            "added to kill them; the package was unchanged, so earlier kills stand."
+        )
+    lines += [
         "",
         "| module | mutants | sampled | killed | equivalent | survived | kill rate |",
         "| --- | --- | --- | --- | --- | --- | --- |",
