@@ -143,6 +143,8 @@ def run_module(
 ) -> dict:
     """Run a random sample of ``module``'s mutants (or the mutants named in ``only``)."""
     t0 = time.perf_counter()
+    # the tree is copied now: record its commit and time per module (tests may grow meanwhile)
+    copied = {"commit": _commit(), "started": time.strftime("%Y-%m-%d %H:%M:%S %Z")}
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{module}-") as tmp:
         tmp = Path(tmp)
         for part in ("segplan", "tests", "scenarios"):
@@ -163,7 +165,7 @@ def run_module(
         # 2. run the sample
         _mutmut(["run", "--max-children", str(workers), *chosen], tmp, python, log)
         codes = _meta(tmp, module)
-        result = {"module": module, "mutants": len(names), "sample": len(chosen)}
+        result = {"module": module, "mutants": len(names), "sample": len(chosen), **copied}
         groups = {"killed": [], "timeout": [], "survived": [], "no_tests": [], "other": []}
         for name in chosen:
             code = codes.get(name)
@@ -235,6 +237,8 @@ def readme_block(stored: dict, equivalent: set[str]) -> str:
         "each with its reason, in `benchmarks/results/mutation_equivalent.md`; this block is "
         "written by `python benchmarks/mutation.py --readme`).",
     ]
+    if meta.get("note"):
+        lines[0] += " " + meta["note"]
     reruns = sorted({(r["when"], r["commit"]) for m in stored["results"] for r in m.get("reruns", [])})
     if reruns:
         when = ", ".join(f"on {w} at commit `{c[:12]}`" for w, c in reruns)
