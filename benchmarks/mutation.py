@@ -249,13 +249,13 @@ def readme_block(stored: dict, equivalent: set[str]) -> str:
         )
     lines += [
         "",
-        "| module | mutants | sampled | killed | equivalent | survived | kill rate |",
-        "| --- | --- | --- | --- | --- | --- | --- |",
+        "| module | mutants | sampled | killed | equivalent | survived | no targeted test | kill rate |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in rows:
         lines.append(
             f"| `{r['module']}` | {r['mutants']} | {r['sample']} | {r['killed']} | {r['equivalent']} "
-            f"| {len(r['survived'])} | {100 * r['kill_rate']:.0f} % |"
+            f"| {len(r['survived'])} | {r['uncovered']} | {100 * r['kill_rate']:.0f} % |"
         )
     killed = sum(r["killed"] for r in rows)
     judged = sum(r["sample"] - r["equivalent"] for r in rows)
