@@ -540,3 +540,23 @@ def test_collides_never_misses_hypothesis(L, ratio, phi0, phi1, frac, x_frac, t,
     w = col.collision_witness(u, poly)
     if w is not None:
         assert distance_at(u, poly, w) <= 1e-7 * (L + u.x_end + 10)
+
+
+def test_quadratic_points_against_numpy_roots():
+    """``sweep.quadratic_points``: the real roots (numpy's companion-matrix roots as the
+    oracle), the vertex twice for a complex pair, the linear root when ``a2`` vanishes."""
+    from segplan.sweep import quadratic_points
+
+    rng = np.random.default_rng(2)
+    a2, a1, a0 = rng.normal(size=(3, 400)) * 10.0 ** rng.uniform(-3, 3, (3, 400))
+    got = quadratic_points(a2, a1, a0)
+    for k in range(400):
+        disc = a1[k] ** 2 - 4 * a2[k] * a0[k]
+        if disc >= 0:
+            want = np.sort(np.roots([a2[k], a1[k], a0[k]]).real)
+        else:
+            want = np.full(2, -a1[k] / (2 * a2[k]))
+        scale = max(1.0, *np.abs(want))
+        assert np.allclose(np.sort(got[k]), want, rtol=1e-9, atol=1e-12 * scale), k
+    lin = quadratic_points(np.array([0.0]), np.array([2.0]), np.array([-3.0]))
+    assert np.allclose(lin, 1.5)

@@ -131,3 +131,49 @@ def test_forced_wall_fallback_never_misses_and_alarms_only_near():
             assert clearance <= e + 1e-9 * (1 + abs(xmax) + abs(ymax)), (clearance, e)
             assert union_in_bounds(u, bounds)  # unforced: inside
     assert alarms >= 5
+
+
+# -- the front-wheel subdivision, unforced, against thin wedges -----------------------------------
+@contextmanager
+def events_only():
+    """No sweep refinement (internal constant): every near case goes to the event test."""
+    saved = col._SWEEP_LEVELS
+    col._SWEEP_LEVELS = 0
+    try:
+        yield
+    finally:
+        col._SWEEP_LEVELS = saved
+
+
+def wedge(tip, axis, half_angle, length) -> np.ndarray:
+    """A thin triangle (counter-clockwise) with its sharp tip at ``tip``, pointing against ``axis``."""
+    a = math.atan2(axis[1], axis[0])
+    sides = (a - half_angle, a + half_angle)
+    pts = [tip] + [tip + length * np.array([math.cos(b), math.sin(b)]) for b in sides]
+    return np.array(shapely.geometry.polygon.orient(shapely.Polygon(pts), 1).exterior.coords[:-1])
+
+
+def test_front_subdivision_separates_a_thin_wedge_by_its_chords():
+    """A 4-degree wedge whose tip nearly touches the front-wheel path (outside it).
+
+    Its edge normals barely separate it from a piece of the path: the piece's chord (its
+    unit normal) must. The subdivision then decides every case exactly (no false alarm
+    at gaps of 1e-4 L and more, no miss).
+    """
+    rng = np.random.default_rng(5)
+    decided = 0
+    for _ in range(60):
+        u = random_union(rng)
+        B = front_path(u, 201)
+        i = int(rng.integers(20, 181))
+        t = B[i + 1] - B[i - 1]
+        t /= np.hypot(*t)
+        (ax, ay), (bx, by) = B[i] - B[i - 1], B[i + 1] - B[i]
+        nrm = np.array([t[1], -t[0]]) * (1.0 if ax * by - ay * bx > 0 else -1.0)
+        for gap in (1e-4, 1e-3, 1e-2):
+            poly = wedge(B[i] + nrm * gap * u.L, nrm, math.radians(2.0), u.L)
+            truth = dense_collides(u, poly)
+            with events_only():
+                assert col.collides(u, poly) == truth, (gap, truth)
+            decided += not truth
+    assert decided > 100  # most wedges are free: the false alarms were the risk

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from segplan import collision, cost, random_world
+from segplan import Union, collision, cost, random_world
 from segplan.cost import longd_intrinsic_scalar
 from segplan.frame import _exponents, _features, heuristic_alpha, heuristic_coefficients
 from segplan.geometry import (
@@ -192,3 +192,70 @@ def test_small_heuristic_batches_use_the_scalar_path():
         u = links.union(p0, p1)
         geo = intrinsic(p0, p1)
         assert u.alpha == pytest.approx(heuristic_alpha(geo.d, geo.phi0, geo.phi1, ws.L), abs=1e-12)
+
+
+@pytest.mark.parametrize("origin", [(0.0, 0.0), (1e3, 0.0), (0.0, -1e3), (-1e3, 1e3)])
+def test_link_model_coincidence_tolerance(origin):
+    """Points closer than 1e-9 x max(1, |coordinates|) have no union; a little farther, one."""
+    links = LinkModel(Workspace([], 1.0, None, 1.0))
+    scale = max(1.0, *map(abs, origin))
+    p0 = Pose(origin[0], origin[1], 0.0)
+    for factor, exists in ((0.5, False), (1.5, True)):
+        step = factor * 1e-9 * scale
+        for p1 in (Pose(origin[0] + step, origin[1], 0.0), Pose(origin[0], origin[1] + step, math.pi / 2)):
+            assert (links.union(p0, p1) is not None) == exists, (p1, factor)
+
+
+def test_certain_hits_are_real_hits_near_obstacles():
+    """The sampled certain-hit shortcut never claims an obstacle that the exact test clears.
+
+    Unions pass close to obstacles (their ends near a vertex), so the broad phase keeps
+    many pairs and the shortcut decides some of them: its answers, and the exact test's,
+    are checked against :func:`segplan.collision.collides` on every obstacle.
+    """
+    rng = np.random.default_rng(11)
+    certain = near_misses = 0
+    for seed in range(4):
+        world = random_world(seed, 8)
+        ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+        links = LinkModel(ws)
+        for _ in range(80):
+            poly = world.enlarged[int(rng.integers(len(world.enlarged)))]
+            v = poly[int(rng.integers(len(poly)))]
+            heading = float(rng.uniform(-np.pi, np.pi))
+            back, ahead = rng.uniform(0.5, 3.0, 2)
+            p0 = Pose(v[0] - back * math.cos(heading), v[1] - back * math.sin(heading), heading)
+            turn = heading + float(rng.uniform(-0.4, 0.4))
+            p1 = Pose(v[0] + ahead * math.cos(turn), v[1] + ahead * math.sin(turn), turn)
+            u = links.union(p0, p1)
+            if u is None:
+                continue
+            truth = {i for i in range(len(ws.polygons)) if collision.collides(u, ws.convex[i], check=False)}
+            before = ws.stats.certain_hits
+            assert set(ws.colliding(u, first=False)) == truth
+            certain += ws.stats.certain_hits - before
+            near = ws.facts(u).near  # obstacles kept by the broad phase
+            near_misses += sum(1 for i, x in near.items() if x is not None and i not in truth)
+    assert certain > 20 and near_misses > 20  # both kinds of answer were exercised
+
+
+@pytest.mark.parametrize("k", [20.0, 100.0, 200.0, 400.0])
+def test_curvature_bound_uses_the_slopes_vertex(k):
+    """An S-curve whose slope's vertex lies inside a piece between the curvature samples.
+
+    In the frame, ``f'(x) = k (x - x_v)^2`` (``x_v`` between two of the 17 samples): the
+    curvature peaks on both sides of ``x_v``, between the samples, where ``|f'|`` is below
+    its values at the piece's ends. The piecewise bound must use the least ``|f'|`` on the
+    piece (at the vertex of the parabola ``f'``): with the ends' values only, it would pass
+    a union whose curvature exceeds the limit. Checked just below and above the exact maximum.
+    """
+    X = 4.0
+    xv = X * 8.5 / 16
+    fX = k / 3.0 * ((X - xv) ** 3 + xv**3)
+    p0 = Pose(0.0, 0.0, math.atan(k * xv**2))
+    p1 = Pose(X, fX, math.atan(k * (X - xv) ** 2))
+    u = Union(p0, p1, math.atan2(fX, X), 1.0)
+    assert u.coefficients[3] == pytest.approx(k / 3.0, rel=1e-9)
+    ref = u.max_curvature()
+    assert not Workspace([], 1.0, None, ref * 0.999).curvature_ok(u)
+    assert Workspace([], 1.0, None, ref * 1.001).curvature_ok(u)

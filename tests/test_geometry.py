@@ -132,3 +132,13 @@ def test_segment_predicate_tolerance_is_explicit():
     assert not geo.segment_hits_polygon(a, b, square, tol=1e-11)
     assert geo.segment_hits_polygon(a, b, square, tol=1e-9)  # within the tolerance: touching
     assert geo.segment_hits_polygon((1.0, 0.2), b, square)  # touching counts
+
+
+def test_as_polygon_validates_by_default():
+    """``as_polygon`` checks convexity unless told not to (``check=False``)."""
+    from segplan.geometry import as_polygon
+
+    dart = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.5], [1.0, 2.0]]
+    with pytest.raises(ValueError, match="convex"):
+        as_polygon(dart)
+    assert len(as_polygon(dart, check=False)) == 4

@@ -38,3 +38,21 @@ def test_benchmark_block_is_written_by_the_script():
     block = README.split("<!-- benchmarks:start -->", 1)[1].split("<!-- benchmarks:end -->", 1)[0]
     assert "by `python benchmarks/readme.py`" in block
     assert "Measured on" in block
+
+
+def test_mutation_block_is_written_from_the_stored_run():
+    """The kill rates in the README are those of benchmarks/results/mutation.json."""
+    import importlib.util
+    import json
+    import sys
+
+    spec = importlib.util.spec_from_file_location("mutation", ROOT / "benchmarks" / "mutation.py")
+    mutation = importlib.util.module_from_spec(spec)
+    sys.modules["mutation"] = mutation
+    spec.loader.exec_module(mutation)
+    stored = json.loads(mutation.STORED.read_text())
+    block = README.split(mutation.START, 1)[1].split(mutation.END, 1)[0]
+    assert block.strip() == mutation.readme_block(stored, mutation.equivalent_mutants()).strip()
+    equivalent = mutation.equivalent_mutants()
+    survivors = {n for r in stored["results"] for n in r["survivors"]}
+    assert equivalent <= survivors  # the list names only mutants of the stored run

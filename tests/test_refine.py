@@ -56,6 +56,19 @@ def test_refined_plans_are_valid_and_not_longer(plans, name):
     assert found.refinement is None
 
 
+def test_refinement_counters_are_consistent():
+    """Each accepted move is a tried node update; a refinement that moved nodes tried some.
+
+    Refines here, not through the module's fixture, so that a mutation tool that selects
+    tests by the functions they call runs this one.
+    """
+    for name in ("fig5_example1", "fig6_example2"):
+        sc = segplan.load_scenario(SCENARIOS / f"{name}.json")
+        info = refine(plan_scenario(sc), sc).refinement
+        assert info.updates >= info.moves > 0, name
+        assert info.checked > 0 and info.splits >= 0 and info.shortcuts >= 0, name
+
+
 def test_refinement_shortens_the_paper_examples(plans):
     """Figs. 5 and 6: the refined front-wheel path is shorter by more than a per cent."""
     for name in ("fig5_example1", "fig6_example2"):
@@ -105,7 +118,15 @@ def test_bad_input(plans):
         refine(found, other)
     with pytest.raises(ValueError, match="already refined"):
         refine(refined, sc)
-    for kw in ({"rounds": -1}, {"rounds": 1.5}, {"split": 0}, {"min_step": math.nan}, {"max_sweeps": True}):
+    for kw in (
+        {"rounds": -1},
+        {"rounds": 1.5},
+        {"split": 0},
+        {"split": True},  # a bool is no step size
+        {"first_step": "0.5"},  # a ValueError, not a TypeError
+        {"min_step": math.nan},
+        {"max_sweeps": True},
+    ):
         with pytest.raises(ValueError, match=next(iter(kw))):
             refine(found, sc, **kw)
     with pytest.raises(ValueError, match="must not exceed"):

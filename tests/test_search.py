@@ -220,6 +220,26 @@ def test_characteristic_dimension():
     assert characteristic_dimension([]) == 1.0 and characteristic_dimension([], fallback=2.5) == 2.5
 
 
+@pytest.mark.parametrize("wall", range(4))
+def test_characteristic_dimension_measures_each_wall(wall):
+    """One obstacle nearest to one wall: d_s is its gap to that wall (shapely's distance)."""
+    bounds = (0.0, 0.0, 10.0, 8.0)
+    corner = [(0.3, 3.0), (5.0, 0.4), (8.8, 3.0), (4.0, 6.5)][wall]  # 0.3, 0.4, 0.2, 0.5 from a wall
+    a = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]) + corner
+    walls = shapely.Polygon([(0, 0), (10, 0), (10, 8), (0, 8)]).exterior
+    expected = shapely.Polygon(a).distance(walls)
+    assert expected == pytest.approx([0.3, 0.4, 0.2, 0.5][wall])
+    assert characteristic_dimension([a], bounds=bounds) == pytest.approx(expected)
+
+
+def test_problem_defaults_are_the_papers_method():
+    """``Problem``'s defaults: h' (a), the LONGD link cost, d_s = 0 and no turning radius."""
+    from segplan.problem import Problem
+
+    p = Problem(Pose(0.0, 0.0, 0.0), Pose(5.0, 0.0, 0.0), links=None)
+    assert (p.heuristic, p.cost, p.ds_over_L, p.R) == ("a", "longd", 0.0, 0.0)
+
+
 def test_heuristic_c_limits():
     """(c) with d_s = 0 weighs (a) fully; with a huge d_s it is the distance (b)."""
     sc = segplan.load_scenario(SCENARIOS / "fig5_example1.json")
