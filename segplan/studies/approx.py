@@ -118,6 +118,29 @@ def sample_wide(
     return dl, phi0, phi1, alpha
 
 
+def _error_table(dl, phi0, phi1, alpha, exact, approx, domain):
+    """One row per union: its parameters, end slopes, [1], [2] and the relative error of [2]."""
+    import pandas as pd
+
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    rel = approx / exact - 1.0
+    return pd.DataFrame(
+        {
+            "d_over_L": dl,
+            "alpha_deg": np.degrees(alpha),
+            "phi0_deg": np.degrees(phi0),
+            "phi1_deg": np.degrees(phi1),
+            "mbar0": m0,
+            "mbar1": m1,
+            "exact": exact,
+            "approx": approx,
+            "rel_error": rel,
+            "abs_error": np.abs(rel),
+            "in_domain": domain.contains(dl, phi0, phi1, alpha, 1.0),
+        }
+    )
+
+
 def error_study(d_over_L, phi0, phi1, alpha, k=None):
     """Exact [1] against [2] case by case, as a pandas DataFrame.
 
@@ -135,30 +158,13 @@ def error_study(d_over_L, phi0, phi1, alpha, k=None):
         Columns ``d_over_L, alpha_deg, phi0_deg, phi1_deg, mbar0, mbar1, exact, approx,
         rel_error`` (signed, ``approx / exact - 1``), ``abs_error`` and ``in_domain``.
     """
-    import pandas as pd
 
     dl, phi0, phi1, alpha = (
         np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha)
     )
     exact = exact_values(dl, phi0, phi1, alpha, 1.0)
     approx = longd_approx_intrinsic(dl, phi0, phi1, alpha, 1.0, k=k)
-    m0, m1 = chord_slopes(phi0, phi1, alpha)
-    rel = approx / exact - 1.0
-    return pd.DataFrame(
-        {
-            "d_over_L": dl,
-            "alpha_deg": np.degrees(alpha),
-            "phi0_deg": np.degrees(phi0),
-            "phi1_deg": np.degrees(phi1),
-            "mbar0": m0,
-            "mbar1": m1,
-            "exact": exact,
-            "approx": approx,
-            "rel_error": rel,
-            "abs_error": np.abs(rel),
-            "in_domain": APPROX_DOMAIN.contains(dl, phi0, phi1, alpha, 1.0),
-        }
-    )
+    return _error_table(dl, phi0, phi1, alpha, exact, approx, APPROX_DOMAIN)
 
 
 def k_by_alpha():
@@ -597,30 +603,13 @@ def variant_error_study(name: str, d_over_L, phi0, phi1, alpha, calibration=None
     Returns the same columns as :func:`error_study`; ``in_domain`` is the variant's own
     domain (``calibration.domain``, by default :func:`variant_calibration`).
     """
-    import pandas as pd
 
     cal = variant_calibration(name) if calibration is None else calibration
     dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
     rear, front = variant_terms(name, dl, p0, p1, a)
     exact = exact_values(dl, p0, p1, a, 1.0)
     approx = dl * (1.0 + k_from_coef(cal.k_coef, a) * rear) + front
-    m0, m1 = chord_slopes(p0, p1, a)
-    rel = approx / exact - 1.0
-    return pd.DataFrame(
-        {
-            "d_over_L": dl,
-            "alpha_deg": np.degrees(a),
-            "phi0_deg": np.degrees(p0),
-            "phi1_deg": np.degrees(p1),
-            "mbar0": m0,
-            "mbar1": m1,
-            "exact": exact,
-            "approx": approx,
-            "rel_error": rel,
-            "abs_error": np.abs(rel),
-            "in_domain": cal.domain.contains(dl, p0, p1, a, 1.0),
-        }
-    )
+    return _error_table(dl, p0, p1, a, exact, approx, cal.domain)
 
 
 def matched_cost_study(n: int = 2000, seed: int = 11):
