@@ -260,10 +260,13 @@ def test_heuristic_always_returns_a_valid_frame(phi0, phi1, d_over_L, shift):
     if hi - lo <= 1e-6:
         return
     for p1 in (phi1, shift, -shift):
-        alpha = optimal_alpha_intrinsic(d_over_L, phi0, p1, 1.0)
         lo, hi = alpha_interval(phi0, p1)
         if hi - lo > 1e-6:
+            alpha = optimal_alpha_intrinsic(d_over_L, phi0, p1, 1.0)
             assert math.isfinite(alpha) and lo < alpha < hi
+        elif hi <= lo:  # no frame gives a cubic: a clear error, never a silent answer
+            with pytest.raises(ValueError, match="no alpha reference system"):
+                optimal_alpha_intrinsic(d_over_L, phi0, p1, 1.0)
 
 
 def test_heuristic_vectorised_equals_scalar():

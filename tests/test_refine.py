@@ -64,7 +64,7 @@ def test_refinement_counters_are_consistent():
     """
     for name in ("fig5_example1", "fig6_example2"):
         sc = segplan.load_scenario(SCENARIOS / f"{name}.json")
-        info = refine(plan_scenario(sc), sc).refinement
+        info = refine(plan_scenario(sc, planner="paper"), sc).refinement
         assert info.updates >= info.moves > 0, name
         assert info.checked > 0 and info.splits >= 0 and info.shortcuts >= 0, name
 
