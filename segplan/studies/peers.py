@@ -17,9 +17,8 @@ edges met. This module is the study the book's chapter 8 draws:
   each as the paper's search finds it and refined by :func:`segplan.refine` (beyond the
   paper: shortcuts, splits and local moves of the nodes; ``+refine`` in ``method``);
   time: the median wall time of :data:`SEGPLAN_REPEATS` plans in one process, after the
-  process's one-time set-up (the first-use fit of the heuristic frame's coefficients,
-  :func:`segplan.frame.heuristic_coefficients`, about a second, measured and reported
-  apart, like OMPL's library load).
+  process's one-time set-up (:func:`warm_up`: the stored fitted constants loaded, the
+  interpreter's caches warmed), measured and reported apart, like OMPL's library load.
 
 Goal: on each scenario segplan's front-wheel length at most that of the best
 OMPL result at 5 s, found in under 1/50 of that time (0.1 s). :func:`goal_table` judges
