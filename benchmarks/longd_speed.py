@@ -14,7 +14,7 @@ validated domain of [2] (where the planner uses it), CPU time, best of ``--repea
   and with ``rtol`` equal to [2]'s error bound (2.5 %), with the error Romberg actually
   reaches at that tolerance;
 * "the same maximum error bound", measured as chapter 3 of the book measures it, with the
-  same helper on the same unions (:func:`segplan.studies.approx.matched_cost_study`):
+  same helper on the same unions (:func:`segplan.studies.romberg_cost.matched_cost_study`):
   Romberg from level 1 at the loosest tolerance whose maximum error does not exceed
   [2]'s, in integrand evaluations and in time (scalar calls of the intrinsic layer, both).
 
@@ -43,7 +43,8 @@ import numpy as np  # noqa: E402
 import segplan  # noqa: E402
 from segplan.cost import longd_approx_intrinsic, longd_exact_intrinsic, longd_integrand  # noqa: E402
 from segplan.fit.formula2 import BOUND_MAX  # noqa: E402
-from segplan.studies.approx import matched_cost_study, romberg_work, sample_domain  # noqa: E402
+from segplan.studies.approx import sample_domain  # noqa: E402
+from segplan.studies.romberg_cost import matched_cost_study, romberg_work  # noqa: E402
 
 
 def cpu_rate(fn, n_evals: int, repeats: int) -> float:

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from segplan.studies import peers
+from segplan.studies import ompl_runner, peers
 
 DEFAULT_OUT = Path(__file__).resolve().parent / "results" / "peers_ompl.csv"
 
@@ -42,7 +42,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     ap.add_argument("--quick", action="store_true", help="smoke run: tiny budget, 1 seed, one scenario")
     ap.add_argument("--scenarios", nargs="+", help="scenario names (default: all shipped)")
-    ap.add_argument("--planners", nargs="+", choices=peers.PLANNERS, default=list(peers.PLANNERS))
+    ap.add_argument("--planners", nargs="+", choices=ompl_runner.PLANNERS, default=list(ompl_runner.PLANNERS))
     ap.add_argument("--budgets", nargs="+", type=float, default=list(peers.BUDGETS))
     ap.add_argument("--seeds", nargs="+", type=int, default=list(peers.SEEDS))
     ap.add_argument(
@@ -55,7 +55,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     ap.add_argument("--jobs", type=int, default=1, help="OMPL processes at a time (default 1)")
     args = ap.parse_args(argv)
-    if not peers.ompl_available():
+    if not ompl_runner.ompl_available():
         print("peers.py needs the OMPL Python bindings: pip install 'segplan[peers]'", file=sys.stderr)
         return 2
     if args.quick:
@@ -68,7 +68,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 peers.Runs(names, ("BITstar",), tuple(args.reeds_shepp), tuple(args.seeds), "reedsshepp")
             )
         config = peers.StudyConfig(scenarios=names, blocks=tuple(blocks))
-    meta = peers.provenance(["benchmarks/peers.py", *argv], config, args.jobs)
+    meta = ompl_runner.provenance(["benchmarks/peers.py", *argv], config, args.jobs)
     t0 = time.perf_counter()
     ompl, paths = peers.run_ompl(config, jobs=args.jobs)
     meta["wall_seconds"] = round(time.perf_counter() - t0, 1)

@@ -68,7 +68,7 @@ def block(runs: int = 9) -> str:
         f"{rate[('Romberg rtol=1e-10', 'public', 'scalar')]:.3g} |",
         "",
         "Cost of Romberg over [2] at the same maximum error (the paper: 2.5-3x on a MicroVAX), "
-        "measured as chapter 3 of the book measures it (`segplan.studies.approx.matched_cost_study`): "
+        "measured as chapter 3 of the book measures it (`segplan.studies.romberg_cost.matched_cost_study`): "
         f"[2]'s max error on chapter 3's unions is {same['approx_max_error']:.2%}; Romberg from level 1 "
         f"first matches it at rtol {same['rtol']:g}, with {same['mean_evaluations']:.2f} integrand "
         f"evaluations on average, and then costs {same['time_ratio_scalar']:.1f}x [2] in time (scalar "

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from segplan.studies import peers
+from segplan.studies import ompl_runner
 from segplan.studies import robustness as rb
 
 
@@ -62,7 +62,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     groups = rb.floor_groups(args.quick)
     say = lambda s: print(s, file=sys.stderr, flush=True)  # noqa: E731
     if args.ompl or args.quick:
-        if not peers.ompl_available():
+        if not ompl_runner.ompl_available():
             say("OMPL is not installed (pip install 'segplan[peers]'): skipping the OMPL side")
         elif args.quick:
             tmp = Path(tempfile.mkdtemp())

@@ -73,6 +73,13 @@ def plan(
 ) -> Plan:
     """Plan a forward-only path of the segment robot from ``start`` to ``goal``.
 
+    Makes the scenario (:func:`segplan.make_scenario`) and plans on it with
+    :func:`plan_scenario`: ``heuristic`` and the keyword ``options`` are that function's,
+    and so are the :class:`Plan` returned and the errors raised (:class:`NoPathError`;
+    ``ValueError`` naming the argument). Making the scenario adds its own: a malformed
+    polygon, or a start or goal in collision or out of bounds, raises
+    ``segplan.ScenarioError`` (a ``ValueError``).
+
     Parameters
     ----------
     start, goal : (x, y, theta)
@@ -91,24 +98,8 @@ def plan(
     max_steer : float
         Steering limit (radians, in ``(0, pi/2)``): rear-path curvature at most
         ``tan(max_steer) / L`` on every union.
-    heuristic : {"a", "b", "c"}
-        The paper's ``h'`` (see the module docstring).
-    **options
-        Passed to :func:`plan_scenario` (``planner``, ``refine``, ``clearance``, ``cost``,
-        ``version``, ``ds``, ``alpha_method``, ``max_expansions``, ``time_limit``,
-        ``max_turn_chain``, ``expander``, ``lattice``).
-
-    Returns
-    -------
-    Plan
-
-    Raises
-    ------
-    ValueError
-        Bad input, naming the argument (``segplan.ScenarioError``, a ValueError, for a
-        malformed polygon or a start/goal in collision or out of bounds).
-    NoPathError
-        No plan within the search limits; carries what was explored.
+    heuristic, **options
+        See :func:`plan_scenario`.
     """
     robot = Robot(L, half_width, max_steer)
     scenario = make_scenario(robot, start, goal, obstacles, bounds, source="plan()")

@@ -20,18 +20,20 @@ obstacle. On side ``s`` (``+1``: the
 obstacle stays on the robot's right, ``-1``: on its left) the vertex is the *tangent
 vertex seen from the node*: the polygon's extreme vertex in the direction of ``s`` as
 seen from the node's rear point (the first vertex a shortest path around the obstacle
-touches, :func:`tangent_vertices`). If the tangent vertex seen backwards from the goal
-is the same vertex, one intermediate node passes the obstacle and we iterate, as the
-paper does, until *both* new unions are free of it (a "complete" candidate). Otherwise
+touches, :func:`segplan.bisectrix.tangent_vertices`). If the tangent vertex seen backwards
+from the goal is the same vertex, one intermediate node passes the obstacle and we
+iterate, as the paper does, until *both* new unions are free of it (a "complete" candidate). Otherwise
 (a long obstacle, such as a rack) one node cannot pass it: only the first union must be
 free of it, and the next expansion, from the new node, passes the next vertex.
 
 *First estimate.* Position ``P = v + r0 b`` with ``v`` the vertex, ``b`` the outward
-unit bisectrix of its angle (:func:`outward_bisectors`) and ``r0 = 0.3 L``. Heading
-``theta = theta_perp + w wrap(theta_spline - theta_perp)``: ``theta_perp`` at right
-angles with the bisectrix, oriented in the direction of travel (clockwise around the
-obstacle on side ``+1``); ``theta_spline`` the tangent at ``P`` of the parametric clamped
-cubic spline through start, ``P`` and goal (:func:`clamped_spline_tangent`); ``w = 0.5``.
+unit bisectrix of its angle (:func:`segplan.bisectrix.outward_bisectors`) and
+``r0 = 0.3 L``. Heading ``theta = theta_perp + w wrap(theta_spline - theta_perp)``
+(:func:`segplan.bisectrix.iterate_pose`): ``theta_perp`` at right angles with the
+bisectrix, oriented in the direction of travel (clockwise around the obstacle on side
+``+1``); ``theta_spline`` the tangent at ``P`` of the parametric clamped cubic spline
+through start, ``P`` and goal (:func:`segplan.bisectrix.clamped_spline_tangent`);
+``w = 0.5``.
 
 *Iterates* (at most ``max_iterations = 4``; the paper: "two or three iterates at the most
 are normally needed"), by the reason the last one failed:
@@ -86,101 +88,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
+from .bisectrix import iterate_pose, outward_bisectors, tangent_vertices
 from .links import LinkModel
-from .pose import Pose, wrap_fmod
+from .pose import HALF_PI, Pose, wrap_fmod
 from .union import Union
 from .validity import ExpansionStats, Workspace
 
-__all__ = [
-    "Candidate",
-    "Expander",
-    "Successor",
-    "clamped_spline_tangent",
-    "outward_bisectors",
-    "tangent_vertices",
-]
-
-HALF_PI = 0.5 * math.pi
-
-
-def clamped_spline_tangent(p0, point, p1) -> float:
-    """Heading at ``point`` of the clamped cubic spline through three poses' points.
-
-    The spline is parametric, ``(x(t), y(t))`` with chord-length knots ``0, h1, h1 + h2``
-    and clamped end derivatives equal to the unit heading vectors of ``p0`` and ``p1``.
-    Continuity of the second derivative at the middle knot gives its derivative ``D1``::
-
-        h2 D0 + 2 (h1 + h2) D1 + h1 D2 = 3 [h2 (P1 - P0) / h1 + h1 (P2 - P1) / h2]
-
-    Parameters
-    ----------
-    p0, p1 : (x, y, theta)
-        Start and goal poses (their headings clamp the spline).
-    point : (x, y)
-        The middle point.
-
-    Returns
-    -------
-    float
-        World angle of ``D1`` (radians).
-    """
-    x0, y0, t0 = p0[0], p0[1], p0[2]
-    x2, y2, t2 = p1[0], p1[1], p1[2]
-    x1, y1 = point[0], point[1]
-    h1 = math.hypot(x1 - x0, y1 - y0)
-    h2 = math.hypot(x2 - x1, y2 - y1)
-    if h1 <= 0.0 or h2 <= 0.0:
-        raise ValueError("point must differ from both end points")
-    rx = 3.0 * (h2 * (x1 - x0) / h1 + h1 * (x2 - x1) / h2) - h2 * math.cos(t0) - h1 * math.cos(t2)
-    ry = 3.0 * (h2 * (y1 - y0) / h1 + h1 * (y2 - y1) / h2) - h2 * math.sin(t0) - h1 * math.sin(t2)
-    return math.atan2(ry, rx)  # the factor 1 / (2 (h1 + h2)) does not change the angle
-
-
-def _iterate_pose(start, goal, px: float, py: float, base: float, w: float) -> Pose:
-    """An iterate at ``(px, py)``: heading ``base + w wrap(theta_spline - base)``."""
-    px, py = float(px), float(py)
-    try:
-        theta_s = clamped_spline_tangent(start, (px, py), goal)
-    except ValueError:
-        theta_s = base
-    return Pose(px, py, wrap_fmod(base + w * wrap_fmod(theta_s - base)))
-
-
-def outward_bisectors(polygon: np.ndarray) -> np.ndarray:
-    """Unit outward bisectrices of the vertex angles of a convex polygon, ``(k, 2)``.
-
-    ``b_i = unit(unit(v_i - v_{i-1}) + unit(v_i - v_{i+1}))``: for an interior angle below
-    pi the two unit vectors from the neighbours to the vertex add up to a vector along the
-    bisectrix, pointing away from the polygon.
-    """
-    v = np.asarray(polygon, dtype=float)
-    a = v - np.concatenate((v[-1:], v[:-1]))  # v[i] - v[i-1] (np.roll, without its overhead)
-    c = v - np.concatenate((v[1:], v[:1]))  # v[i] - v[i+1]
-    a /= np.hypot(a[:, 0], a[:, 1])[:, None]
-    c /= np.hypot(c[:, 0], c[:, 1])[:, None]
-    b = a + c
-    return b / np.hypot(b[:, 0], b[:, 1])[:, None]
-
-
-def tangent_vertices(polygon, point) -> tuple[int, int]:
-    """Indices of the polygon's extreme vertices seen from ``point`` (outside it).
-
-    Returns
-    -------
-    ccw, cw : int
-        The vertex of largest and of smallest direction angle seen from ``point``,
-        measured from the direction of the polygon's centroid. A convex polygon not
-        containing the point is seen within a cone narrower than pi that contains that
-        direction, so these angles never wrap.
-    """
-    px, py = float(point[0]), float(point[1])
-    pts = [(float(x) - px, float(y) - py) for x, y in polygon]
-    cx = sum(p[0] for p in pts) / len(pts)
-    cy = sum(p[1] for p in pts) / len(pts)
-    rel = [math.atan2(cx * y - cy * x, cx * x + cy * y) for x, y in pts]
-    return max(range(len(rel)), key=rel.__getitem__), min(range(len(rel)), key=rel.__getitem__)
+__all__ = ["Candidate", "Expander", "Successor"]
 
 
 @dataclass(frozen=True)
@@ -359,7 +273,7 @@ class Expander:
         return math.atan2(goal[1] - start[1], goal[0] - start[0])
 
     def _tangents(self, polygon: int, point) -> tuple[int, int]:
-        """:func:`tangent_vertices` of obstacle ``polygon`` seen from ``point`` (cached)."""
+        """:func:`segplan.bisectrix.tangent_vertices` of obstacle ``polygon`` seen from ``point`` (cached)."""
         key = (polygon, point[0], point[1])
         out = self._tangent_cache.get(key)
         if out is None:
@@ -397,7 +311,7 @@ class Expander:
     def first_estimate(self, start: Pose, goal: Pose, polygon: int, side: int, subgoal: bool = False) -> Pose:
         """The first iterate of :meth:`intermediate` (the paper's "good initial estimate")."""
         _, _, v, (bx, by), theta_perp, _ = self._setup(start, goal, polygon, side, subgoal)
-        return _iterate_pose(
+        return iterate_pose(
             start, goal, v[0] + self.r0 * bx, v[1] + self.r0 * by, theta_perp, self.spline_weight
         )
 
@@ -431,7 +345,7 @@ class Expander:
         pose, u_in, u_out, reason = start, None, None, ""
         fallback = None
         for it in range(1, self.max_iterations + 1):
-            pose = _iterate_pose(start, goal, v[0] + r * bx + slide * ex, v[1] + r * by + slide * ey, base, w)
+            pose = iterate_pose(start, goal, v[0] + r * bx + slide * ex, v[1] + r * by + slide * ey, base, w)
             u_in = u_out = None
             reason = self._check_candidate(start, goal, pose, polygon, complete, frame)
             if isinstance(reason, tuple):

@@ -23,7 +23,7 @@ from .geometry import (
 from .pose import Pose, as_pose
 from .world import Robot, Scenario, make_scenario
 
-__all__ = ["random_convex_polygon", "random_world"]
+__all__ = ["place_disjoint", "random_convex_polygon", "random_world"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -44,6 +44,44 @@ def random_convex_polygon(
     rot = rng.uniform(0.0, TWO_PI)
     c, s = math.cos(rot), math.sin(rot)
     return np.asarray(center, dtype=float) + local @ np.array([[c, s], [-s, c]])
+
+
+def place_disjoint(draw, n: int, tries: int) -> list[np.ndarray]:
+    """Up to ``n`` obstacles from ``draw()``, each kept only if it stays clear of those kept.
+
+    ``draw()`` is called at most ``tries`` times, never once ``n`` are kept; it returns
+    ``None`` (the draw is rejected) or ``(polygon, grown)``: ``polygon`` is kept iff
+    ``grown`` overlaps (:func:`segplan.geometry.polygons_overlap`) no kept obstacle's
+    ``grown``, after a bounding-box filter; ``grown=None`` keeps it without that test.
+    Deterministic given ``draw``; the caller reports too few (the list may be shorter than
+    ``n``). Both floor generators place their obstacles with it (:func:`random_world`,
+    :mod:`segplan.studies.floors`).
+    """
+    placed: list[np.ndarray] = []
+    grown: list[np.ndarray] = []
+    boxes = np.empty((n, 4))  # the grown polygons' bounding boxes, a cheap first test
+    for _ in range(tries):
+        if len(placed) == n:
+            break
+        drawn = draw()
+        if drawn is None:
+            continue
+        poly, g = drawn
+        if g is not None:
+            lo, hi = g.min(axis=0), g.max(axis=0)
+            k = len(grown)
+            near = np.flatnonzero(
+                (boxes[:k, 0] <= hi[0])
+                & (lo[0] <= boxes[:k, 2])
+                & (boxes[:k, 1] <= hi[1])
+                & (lo[1] <= boxes[:k, 3])
+            )
+            if any(polygons_overlap(g, grown[i]) for i in near):
+                continue
+            boxes[k] = (*lo, *hi)
+            grown.append(g)
+        placed.append(poly)
+    return placed
 
 
 def random_world(
@@ -132,33 +170,18 @@ def random_world(
     start_p = as_pose(start, "start") if start is not None else sample_pose(fb[0], fb[0] + quarter)
     goal_p = as_pose(goal, "goal") if goal is not None else sample_pose(fb[2] - quarter, fb[2])
     keep_out = [pose_segment(p, robot.L) for p in (start_p, goal_p)]
-    placed: list[np.ndarray] = []
-    grown: list[np.ndarray] = []  # placed obstacles enlarged by half_width + min_gap / 2
-    boxes = np.empty((n_obstacles, 4))  # their bounding boxes, a cheap first test
-    for _ in range(tries):
-        if len(placed) == n_obstacles:
-            break
+
+    def draw():
         r = rng.uniform(rmin, rmax)
         center = (rng.uniform(xmin + r, xmax - r), rng.uniform(ymin + r, ymax - r))
         poly = random_convex_polygon(rng, center, r, max_vertices)  # convex and CCW by construction
         guard = enlarge_polygon(poly, robot.half_width + clear)
         if any(segment_hits_polygon(a, b, guard) for a, b in keep_out):
-            continue
-        if gap is not None:
-            g = enlarge_polygon(poly, robot.half_width + 0.5 * gap)
-            lo, hi = g.min(axis=0), g.max(axis=0)
-            n = len(grown)
-            near = np.flatnonzero(
-                (boxes[:n, 0] <= hi[0])
-                & (lo[0] <= boxes[:n, 2])
-                & (boxes[:n, 1] <= hi[1])
-                & (lo[1] <= boxes[:n, 3])
-            )
-            if any(polygons_overlap(g, grown[i]) for i in near):
-                continue
-            boxes[n] = (*lo, *hi)
-            grown.append(g)
-        placed.append(poly)
+            return None
+        # kept apart: enlarged by half_width + min_gap / 2, they do not overlap
+        return poly, None if gap is None else enlarge_polygon(poly, robot.half_width + 0.5 * gap)
+
+    placed = place_disjoint(draw, n_obstacles, tries)
     if len(placed) < n_obstacles:
         raise ValueError(
             f"placed only {len(placed)} of {n_obstacles} obstacles within {tries} samples; "

@@ -26,7 +26,7 @@ import numpy as np
 
 from .cost import longd_intrinsic_scalar
 from .frame import heuristic_alpha, optimal_alpha_intrinsic
-from .pose import Pose, wrap_fmod
+from .pose import Pose, intrinsic_interval, wrap_fmod
 from .romberg import RombergError
 from .union import Union, cubic_coefficients
 from .validity import Workspace
@@ -39,7 +39,6 @@ __all__ = [
     "LinkModel",
 ]
 
-HALF_PI = 0.5 * math.pi
 #: Margin (radians) kept from the ends of the interval where the cubic exists.
 ALPHA_MARGIN = 1e-9
 #: Romberg tolerance of link costs outside the domain of formula [2] (the paper uses Romberg
@@ -51,26 +50,6 @@ _TAU = np.linspace(0.0, 1.0, 33)
 #: Fewest pose pairs that :meth:`LinkModel.prefetch` sends to the array path of the
 #: heuristic optimal frame (fewer: the scalar path, pair by pair, is faster).
 PREFETCH_MIN_HEURISTIC = 12
-
-
-def _geometry(p0, p1):
-    """Chord length and angle, intrinsic headings and the feasible alpha interval, or None.
-
-    Scalar fast path of :func:`segplan.pose.intrinsic` and
-    :func:`segplan.pose.alpha_interval` (interval shrunk by ``ALPHA_MARGIN``); None for
-    coincident points or an empty interval (no cubic joins the poses).
-    """
-    dx, dy = p1[0] - p0[0], p1[1] - p0[1]
-    d = math.hypot(dx, dy)
-    if d <= 1e-9 * max(1.0, abs(p0[0]), abs(p0[1]), abs(p1[0]), abs(p1[1])):
-        return None
-    psi = math.atan2(dy, dx)
-    phi0, phi1 = wrap_fmod(p0[2] - psi), wrap_fmod(p1[2] - psi)
-    lo = -HALF_PI - min(phi0, phi1, 0.0) + ALPHA_MARGIN
-    hi = HALF_PI - max(phi0, phi1, 0.0) - ALPHA_MARGIN
-    if not hi > lo:
-        return None
-    return d, psi, phi0, phi1, lo, hi
 
 
 class LinkModel:
@@ -146,7 +125,7 @@ class LinkModel:
         for p0, p1 in pairs:
             if (p0, p1, None) in self._cache or (p0, p1) in self._alphas:
                 continue
-            geo = _geometry(p0, p1)
+            geo = intrinsic_interval(p0, p1, ALPHA_MARGIN)
             if geo is not None:
                 keys.append((p0, p1))
                 geos.append(geo)
@@ -164,7 +143,8 @@ class LinkModel:
             self._alphas[key] = float(a)
 
     def _optimal_alpha(self, d, phi0, phi1):
-        """:func:`segplan.frame.optimal_alpha_intrinsic` of pairs from :func:`_geometry`.
+        """:func:`segplan.frame.optimal_alpha_intrinsic` of pairs from
+        :func:`segplan.pose.intrinsic_interval`.
 
         Those are valid by construction (``d > 0``, finite, a feasible interval wider than
         ``2 ALPHA_MARGIN``), so the heuristic method skips the re-validation (the same
@@ -175,7 +155,7 @@ class LinkModel:
         return optimal_alpha_intrinsic(d, phi0, phi1, self.L, method=self.alpha_method)
 
     def _make_union(self, p0, p1, frame_angle):
-        geo = _geometry(p0, p1)
+        geo = intrinsic_interval(p0, p1, ALPHA_MARGIN)
         if geo is None:
             self.ws.stats.infeasible += 1
             return None

@@ -38,6 +38,7 @@ __all__ = [
     "check_length",
     "feasible_alpha_interval",
     "intrinsic",
+    "intrinsic_interval",
     "wrap",
 ]
 
@@ -209,6 +210,38 @@ def _intrinsic_scalar(p0, p1) -> Intrinsic | None:
         return None
     psi = float(np.arctan2(dy, dx))
     return Intrinsic(d, psi, wrap_scalar(t0 - psi), wrap_scalar(t1 - psi))
+
+
+def intrinsic_interval(p0, p1, margin: float = 0.0):
+    """The planner's scalar fast path of :func:`intrinsic` and :func:`alpha_interval`.
+
+    Chord length ``d``, chord angle ``psi``, intrinsic headings ``phi0, phi1`` and the
+    interval ``(lo, hi)`` of ``alpha`` where the cubic exists, shrunk by ``margin`` at
+    both ends, for two ``(x, y, theta)`` poses the caller has validated; ``None`` for
+    coincident points (``d <= 1e-9 max(1, |coordinates|)``, a looser tolerance than
+    :func:`intrinsic`'s) or an empty interval (no cubic joins the poses). The link model
+    (:class:`segplan.links.LinkModel`) builds every union from it.
+
+    It computes with the ``math`` module and :func:`wrap_fmod`, the planner's scalar wrap,
+    so its values equal the array path's to rounding, not always to the last bit; the
+    paper's search is sensitive to that last bit and the book's numbers were computed with
+    this form (``tests/test_fast_paths.py`` compares the two).
+
+    Returns
+    -------
+    (d, psi, phi0, phi1, lo, hi) : tuple of float, or None
+    """
+    dx, dy = p1[0] - p0[0], p1[1] - p0[1]
+    d = math.hypot(dx, dy)
+    if d <= 1e-9 * max(1.0, abs(p0[0]), abs(p0[1]), abs(p1[0]), abs(p1[1])):
+        return None
+    psi = math.atan2(dy, dx)
+    phi0, phi1 = wrap_fmod(p0[2] - psi), wrap_fmod(p1[2] - psi)
+    lo = -HALF_PI - min(phi0, phi1, 0.0) + margin
+    hi = HALF_PI - max(phi0, phi1, 0.0) - margin
+    if not hi > lo:
+        return None
+    return d, psi, phi0, phi1, lo, hi
 
 
 def alpha_interval(phi0, phi1):

@@ -36,7 +36,6 @@ from segplan.studies.approx import (
     k_basis_comparison,
     k_by_alpha,
     planner_links,
-    romberg_work,
     sample_domain,
     sample_wide,
     term_study,
@@ -44,6 +43,7 @@ from segplan.studies.approx import (
     variant_domains,
     variant_terms,
 )
+from segplan.studies.romberg_cost import romberg_work
 
 DEG = math.pi / 180
 

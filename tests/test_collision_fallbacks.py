@@ -54,22 +54,26 @@ def front_path(u, n=N_DENSE):
 
 
 # -- obstacles -------------------------------------------------------------------------------------
+def outer_side(rng, u):
+    """A random point of the front-wheel path (away from its ends) and the unit normal there
+    on the outer side of the front wheel's turn (where the front wheel meets an obstacle first)."""
+    B = front_path(u, 201)
+    i = int(rng.integers(20, 181))
+    t = B[i + 1] - B[i - 1]
+    t /= np.hypot(*t)
+    (ax, ay), (bx, by) = B[i] - B[i - 1], B[i + 1] - B[i]
+    return B[i], np.array([t[1], -t[0]]) * (1.0 if ax * by - ay * bx > 0 else -1.0)
+
+
 def near_front_cases(seed, n):
     """Unions and regular polygons placed next to the front-wheel path (some overlapping it)."""
     rng = np.random.default_rng(seed)
     for _ in range(n):
         u = random_union(rng)
-        B = front_path(u, 201)
-        i = int(rng.integers(20, 181))
-        t = B[i + 1] - B[i - 1]
-        t /= np.hypot(*t)
-        # on the outer side of the front wheel's turn: met by the front wheel first
-        (ax, ay), (bx, by) = B[i] - B[i - 1], B[i + 1] - B[i]
-        turn = ax * by - ay * bx
-        nrm = np.array([t[1], -t[0]]) * (1.0 if turn > 0 else -1.0)
+        point, nrm = outer_side(rng, u)
         r = u.L * rng.uniform(0.2, 1.0)
         gap = u.L * 10.0 ** rng.uniform(-7.0, -1.5) * rng.choice([-1.0, 1.0, 1.0, 1.0])  # near-touches
-        centre = B[i] + nrm * (r + gap)
+        centre = point + nrm * (r + gap)
         yield u, ngon(centre, r, int(rng.integers(3, 9)), rng.uniform(0, 2 * math.pi))
 
 
@@ -164,14 +168,9 @@ def test_front_subdivision_separates_a_thin_wedge_by_its_chords():
     decided = 0
     for _ in range(60):
         u = random_union(rng)
-        B = front_path(u, 201)
-        i = int(rng.integers(20, 181))
-        t = B[i + 1] - B[i - 1]
-        t /= np.hypot(*t)
-        (ax, ay), (bx, by) = B[i] - B[i - 1], B[i + 1] - B[i]
-        nrm = np.array([t[1], -t[0]]) * (1.0 if ax * by - ay * bx > 0 else -1.0)
+        point, nrm = outer_side(rng, u)
         for gap in (1e-4, 1e-3, 1e-2):
-            poly = wedge(B[i] + nrm * gap * u.L, nrm, math.radians(2.0), u.L)
+            poly = wedge(point + nrm * gap * u.L, nrm, math.radians(2.0), u.L)
             truth = dense_collides(u, poly)
             with events_only():
                 assert col.collides(u, poly) == truth, (gap, truth)

@@ -15,8 +15,9 @@ from scipy.interpolate import CubicSpline
 
 import segplan
 from segplan import Robot, make_scenario
+from segplan.bisectrix import clamped_spline_tangent, outward_bisectors, tangent_vertices
 from segplan.cost import longd_exact
-from segplan.expansion import Expander, clamped_spline_tangent, outward_bisectors, tangent_vertices
+from segplan.expansion import Expander
 from segplan.floors import random_convex_polygon
 from segplan.pose import Pose
 from segplan.validity import Workspace

@@ -23,7 +23,7 @@ from segplan.geometry import (
     touch_tolerance,
 )
 from segplan.links import LONGD_RTOL, LinkModel
-from segplan.pose import Pose, alpha_interval, intrinsic
+from segplan.pose import Pose, alpha_interval, intrinsic, intrinsic_interval
 from segplan.validity import Workspace
 
 
@@ -84,6 +84,33 @@ def test_intrinsic_fast_path_equals_array_path():
         intrinsic((1.0, math.nan, 0.0), (3.0, 2.0, 1.0))
     with pytest.raises(ValueError):
         intrinsic((1.0, 2.0), (3.0, 2.0, 1.0))
+
+
+def test_intrinsic_interval_equals_intrinsic_and_alpha_interval():
+    """pose.intrinsic_interval (the link model's scalar path: math module, wrap_fmod) gives the
+    array path's intrinsic parameters and alpha interval (shrunk by the margin) to rounding,
+    and None exactly where the interval is empty."""
+    rng = np.random.default_rng(5)
+    margin = 1e-9
+    empty = 0
+    for i in range(3000):
+        a = tuple(float(v) for v in rng.uniform(-50, 50, 3))
+        b = tuple(float(v) for v in rng.uniform(-50, 50, 3))
+        p0, p1 = (Pose(*a), Pose(*b)) if i % 2 else (a, b)
+        got = intrinsic_interval(p0, p1, margin)
+        ref = intrinsic(np.array([a]), np.array([b]))
+        lo, hi = alpha_interval(ref.phi0, ref.phi1)
+        lo, hi = float(lo[0]) + margin, float(hi[0]) - margin
+        if not hi - lo > 1e-12:
+            empty += 1
+            assert got is None or got[5] - got[4] < 1e-12
+            continue
+        assert got is not None
+        expected = (float(ref.d[0]), float(ref.psi[0]), float(ref.phi0[0]), float(ref.phi1[0]), lo, hi)
+        assert got == pytest.approx(expected, rel=1e-12, abs=1e-12)
+    assert 100 < empty < 2900  # both kinds of pair were drawn
+    assert intrinsic_interval((1.0, 2.0, 0.0), (1.0, 2.0, 1.0)) is None  # coincident points
+    assert intrinsic_interval((0.0, 0.0, 0.0), (1.0, 0.0, math.pi)) is None  # goal heading back
 
 
 def test_scalar_segment_test_equals_the_array_test_and_pose_collides():

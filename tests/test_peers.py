@@ -1,5 +1,6 @@
-"""The OMPL comparison (segplan.studies.peers, benchmarks/peers.py): inputs, the shared validity
-check, a smoke run, and the stored results chapter 8 reads."""
+"""The OMPL comparison (segplan.studies.peers, its runner segplan.studies.ompl_runner,
+benchmarks/peers.py): inputs, the shared validity check, a smoke run, and the stored results
+chapter 8 reads."""
 
 import math
 import os
@@ -11,45 +12,45 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from segplan.studies import peers
+from segplan.studies import ompl_runner, peers
 
 ROOT = Path(__file__).resolve().parents[1]
 STORED = ROOT / "benchmarks" / "results" / "peers_ompl.csv"
 
 needs_ompl = pytest.mark.skipif(
-    not peers.ompl_available(),
+    not ompl_runner.ompl_available(),
     reason="the OMPL Python bindings are not installed (pip install 'segplan[peers]')",
 )
 
 
 def test_ompl_heading_is_strictly_inside_minus_pi_pi():
-    assert peers.ompl_heading(math.pi) == -math.pi
-    assert peers.ompl_heading(-math.pi) == -math.pi
-    assert peers.ompl_heading(3 * math.pi) == -math.pi
-    assert peers.ompl_heading(0.25) == pytest.approx(0.25)
-    assert peers.ompl_heading(-1e-20) == pytest.approx(0.0)  # % may round up to 2 pi itself
+    assert ompl_runner.ompl_heading(math.pi) == -math.pi
+    assert ompl_runner.ompl_heading(-math.pi) == -math.pi
+    assert ompl_runner.ompl_heading(3 * math.pi) == -math.pi
+    assert ompl_runner.ompl_heading(0.25) == pytest.approx(0.25)
+    assert ompl_runner.ompl_heading(-1e-20) == pytest.approx(0.0)  # % may round up to 2 pi itself
     for a in np.linspace(-20.0, 20.0, 4001):
-        w = peers.ompl_heading(a)
+        w = ompl_runner.ompl_heading(a)
         assert -math.pi <= w < math.pi
         assert math.isclose(math.cos(w), math.cos(a), abs_tol=1e-12)
         assert math.isclose(math.sin(w), math.sin(a), abs_tol=1e-12)
     with pytest.raises(ValueError, match="theta"):
-        peers.ompl_heading(math.inf)
+        ompl_runner.ompl_heading(math.inf)
 
 
 def test_seed_zero_is_refused():
     with pytest.raises(ValueError, match="seed"):
-        peers.check_seed(0)
+        ompl_runner.check_seed(0)
     with pytest.raises(ValueError, match="seed"):
-        peers.check_seed(True)
-    assert peers.check_seed(np.int64(3)) == 3
+        ompl_runner.check_seed(True)
+    assert ompl_runner.check_seed(np.int64(3)) == 3
 
 
 @pytest.mark.parametrize("name", peers.shipped_scenarios())
 def test_segment_validity_answers_as_scenario_is_free(name):
     """The filtered check equals Scenario.is_free (segplan's own tests), also near contact."""
     sc = peers.load(name)
-    check = peers.SegmentValidity(sc)
+    check = ompl_runner.SegmentValidity(sc)
     rng = np.random.default_rng(7)
     xmin, ymin, xmax, ymax = sc.bounds
     n = 600
@@ -191,7 +192,7 @@ def test_ompl_accepts_a_heading_of_pi():
     """turn_around's goal heads at exactly +pi: normalised, the run is a valid problem."""
     sc = peers.load("turn_around")
     assert sc.goal.theta == math.pi
-    row = peers.solve_ompl_isolated(sc, "BITstar", 0.3, 1)
+    row = ompl_runner.solve_ompl_isolated(sc, "BITstar", 0.3, 1)
     assert "Invalid" not in row["status"], row["status"]
     if row["solved"]:
         assert row["valid"] and row["reversals"] == 0

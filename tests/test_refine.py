@@ -14,6 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
+from test_refine_oracles import random_links
 from test_search import check_plan
 
 import segplan
@@ -200,16 +201,7 @@ def test_certain_failures_never_reject_a_free_link(seed):
     sc = random_world(seed % 50, 6)
     ws = Workspace(sc.enlarged, sc.robot.L, sc.free_bounds, sc.robot.max_curvature)
     rng = np.random.default_rng(seed)
-    xmin, ymin, xmax, ymax = sc.free_bounds
-    n = 60
-    A = np.column_stack(
-        (rng.uniform(xmin, xmax, n), rng.uniform(ymin, ymax, n), rng.uniform(-np.pi, np.pi, n))
-    )
-    step = rng.uniform(0.5, 6.0, n)
-    ang = A[:, 2] + rng.uniform(-0.8, 0.8, n)
-    B = np.column_stack(
-        (A[:, 0] + step * np.cos(ang), A[:, 1] + step * np.sin(ang), A[:, 2] + rng.uniform(-1.2, 1.2, n))
-    )
+    A, B = random_links(rng, sc.free_bounds, 60, aim=0.8, turn=1.2)
     dx, dy = B[:, 0] - A[:, 0], B[:, 1] - A[:, 1]
     d, psi = np.hypot(dx, dy), np.arctan2(dy, dx)
     phi0 = np.angle(np.exp(1j * (A[:, 2] - psi)))

@@ -75,6 +75,22 @@ def length_rewarded():
         _Refiner.cost = staticmethod(original)
 
 
+def random_links(rng, bounds, n: int, aim: float, turn: float):
+    """``n`` random links ``A[k] -> B[k]`` (poses, ``(n, 3)``): ``A`` uniform in ``bounds`` with
+    any heading, ``B`` 0.5 to 6 m ahead within ``aim`` of ``A``'s heading, its heading within
+    ``turn`` of ``A``'s."""
+    xmin, ymin, xmax, ymax = bounds
+    A = np.column_stack(
+        (rng.uniform(xmin, xmax, n), rng.uniform(ymin, ymax, n), rng.uniform(-np.pi, np.pi, n))
+    )
+    step = rng.uniform(0.5, 6.0, n)
+    ang = A[:, 2] + rng.uniform(-aim, aim, n)
+    B = np.column_stack(
+        (A[:, 0] + step * np.cos(ang), A[:, 1] + step * np.sin(ang), A[:, 2] + rng.uniform(-turn, turn, n))
+    )
+    return A, B
+
+
 def flagged(scenario, A, B):
     """``certain_failures`` of the links ``A[k] -> B[k]`` in their heuristic frames (internal).
 
@@ -226,16 +242,7 @@ def test_certain_failures_never_flag_a_free_link(seed):
     """Dense shapely sampling: every link free with a margin is left unflagged; some links are flagged."""
     sc = random_world(seed, 8)
     rng = np.random.default_rng(seed)
-    xmin, ymin, xmax, ymax = sc.free_bounds
-    n = 250
-    A = np.column_stack(
-        (rng.uniform(xmin, xmax, n), rng.uniform(ymin, ymax, n), rng.uniform(-np.pi, np.pi, n))
-    )
-    step = rng.uniform(0.5, 6.0, n)
-    ang = A[:, 2] + rng.uniform(-0.6, 0.6, n)
-    B = np.column_stack(
-        (A[:, 0] + step * np.cos(ang), A[:, 1] + step * np.sin(ang), A[:, 2] + rng.uniform(-0.6, 0.6, n))
-    )
+    A, B = random_links(rng, sc.free_bounds, 250, aim=0.6, turn=0.6)
     bad, unions = flagged(sc, A, B)
     clearance = np.array([dense_clearance(u, sc, n=151) for u in unions])
     free = clearance > 1e-6

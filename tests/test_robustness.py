@@ -23,7 +23,7 @@ import shapely
 
 from segplan.api import PAPER_SHARE
 from segplan.studies import floors as fl
-from segplan.studies import peers
+from segplan.studies import ompl_runner
 from segplan.studies import robustness as rb
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -134,7 +134,7 @@ def test_stored_ompl_csv_covers_every_run():
     for s in prov["sessions"]:
         for key in ("machine", "ompl", "commit", "command", "note"):
             assert key in s
-        assert "started" in s or "date" in s  # the first session's format, or peers.provenance's
+        assert "started" in s or "date" in s  # the first session's format, or ompl_runner.provenance's
         assert "other work" in s["note"]
     lines = rb.session_lines(prov)
     assert len(lines) == 4 * len(prov["sessions"]) + 1 and "OMPL" in lines[0]
@@ -256,6 +256,6 @@ def test_quick_run():
     )
     assert out.returncode == 0, out.stderr[-3000:]
     assert "invalid plans" in out.stdout and "success, any headings" in out.stdout
-    ompl = peers.ompl_available()
+    ompl = ompl_runner.ompl_available()
     assert ("OMPL quick:" in out.stderr) == ompl
     assert ("skipping the OMPL side" in out.stderr) == (not ompl)

@@ -8,13 +8,12 @@ import pytest
 from segplan.cost import K_COEF, k_from_coef
 from segplan.studies.approx import (
     k_uncapped_limit,
-    romberg_matched,
-    romberg_work,
     sample_domain,
     variant_calibration,
     variant_error_study,
 )
 from segplan.studies.frames import case_a_boundary, paper_case_a_excess
+from segplan.studies.romberg_cost import romberg_matched, romberg_work
 
 DEG = math.pi / 180.0
 PRINTED = "simpson|cross=1/2|exp=-5/2"

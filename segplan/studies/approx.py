@@ -6,8 +6,9 @@ helpers draw the cases (:func:`sample_domain`, :func:`sample_wide`), measure [2]
 case (:func:`error_study`), compare forms of ``k_alpha`` (:func:`k_by_alpha`,
 :func:`k_basis_comparison`) and the OCR-literal variants of [2]
 (:func:`variant_comparison`, :func:`variant_terms`, :func:`variant_domains`), split the
-exact cost into its terms (:func:`exact_split`, :func:`term_study`), count Romberg's work
-(:func:`romberg_work`) and record the links the planner evaluates (:func:`planner_links`).
+exact cost into its terms (:func:`exact_split`, :func:`term_study`) and record the links
+the planner evaluates (:func:`planner_links`); Romberg's work at the same error is
+:mod:`segplan.studies.romberg_cost`.
 They use the stored constants of [2] (:data:`segplan.cost.K_COEF`,
 :data:`segplan.cost.APPROX_DOMAIN`) and the fitting procedures of
 :mod:`segplan.fit.formula2`; nothing here is part of the stable API.
@@ -27,10 +28,8 @@ from ..cost import (
     exact_values,
     k_from_coef,
     longd_approx_intrinsic,
-    longd_integrand,
 )
 from ..fit.formula2 import ALPHA_GRID_DEG, calibration_grid, fit_k, grid_inside, k_basis, run_calibration
-from ..romberg import romberg
 from ..union import chord_slopes
 
 __all__ = [
@@ -40,10 +39,6 @@ __all__ = [
     "k_by_alpha",
     "k_uncapped_limit",
     "planner_links",
-    "MATCH_RTOLS",
-    "matched_cost_study",
-    "romberg_matched",
-    "romberg_work",
     "sample_domain",
     "sample_wide",
     "term_study",
@@ -422,38 +417,6 @@ def term_study(
     return pd.DataFrame(out)
 
 
-def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
-    """Integrand evaluations Romberg needs for [1] to meet ``rtol``, case by case (``L = 1``).
-
-    Section "Approximate computation of cost function" compares [2] with "Romberg
-    integration with the same maximum error bound". Romberg's stopping rule
-    (:func:`segplan.romberg.romberg`) is applied to each case alone, from ``min_levels``
-    halvings on (level ``k`` uses ``2**k + 1`` points), so the count is the work that
-    bound asks for. :func:`segplan.longd_exact` uses at least 4 levels (17 points).
-
-    Returns
-    -------
-    evaluations : ndarray of int
-        Integrand evaluations per case.
-    value : ndarray
-        Romberg's LONGD per case.
-    """
-
-    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
-    evaluations = np.zeros(dl.size, dtype=int)
-    value = np.empty(dl.size)
-    for i in range(dl.size):
-        count = [0]
-
-        def f(tau, i=i, count=count):
-            count[0] += tau.size
-            return longd_integrand(tau, dl[i], p0[i], p1[i], a[i], 1.0)
-
-        value[i] = romberg(f, 0.0, 1.0, rtol=rtol, min_levels=min_levels)[0]
-        evaluations[i] = count[0]
-    return evaluations, value
-
-
 def planner_links(scenarios, **options):
     """Every LONGD evaluation the planner makes while solving ``scenarios``, recorded.
 
@@ -523,64 +486,6 @@ def k_uncapped_limit(coef=K_COEF) -> float:
     return math.asin(math.sqrt(s2)) if 0.0 < s2 < 1.0 else 0.5 * math.pi
 
 
-#: Tolerances tried by :func:`romberg_matched`, loosest first.
-MATCH_RTOLS = (2.5e-2, 1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5)
-
-
-def romberg_matched(d_over_L, phi0, phi1, alpha, max_error: float, rtols=MATCH_RTOLS, reference=None):
-    """Romberg on [1] at "the same maximum error bound" as [2]: the loosest tolerance that meets it.
-
-    Section "Approximate computation of cost function" compares [2] with "Romberg
-    integration with the same maximum error bound". Romberg's tolerance is an estimate, not
-    a bound, so the matching is measured: for each ``rtol`` in ``rtols`` (loosest first),
-    Romberg from level 1 (:func:`romberg_work`) on the given cases, and the first ``rtol``
-    whose largest relative error against ``reference`` is at most ``max_error`` (the
-    largest error of [2] on the same cases) is kept.
-
-    Parameters
-    ----------
-    d_over_L, phi0, phi1, alpha : array_like
-        Cases (``L = 1``, radians).
-    max_error : float
-        The maximum ``|relative error|`` to match (> 0).
-    rtols : sequence of float
-        Tolerances to try, loosest first.
-    reference : ndarray, optional
-        Exact LONGD of the cases; by default Romberg to ``1e-12``.
-
-    Returns
-    -------
-    dict
-        ``rtol`` (NaN if none of ``rtols`` meets ``max_error``), ``evaluations`` (per case,
-        at that ``rtol``), ``mean_evaluations``, ``max_error`` (Romberg's, at that
-        ``rtol``), and ``tried``: a list of ``(rtol, mean evaluations, max error)``.
-    """
-    if not max_error > 0:
-        raise ValueError(f"max_error must be positive, got {max_error}")
-    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
-    ref = exact_values(dl, p0, p1, a, 1.0, rtol=1e-12) if reference is None else np.asarray(reference)
-    tried = []
-    for rtol in rtols:
-        evals, value = romberg_work(dl, p0, p1, a, rtol=rtol, min_levels=1)
-        err = float(np.max(np.abs(value / ref - 1.0)))
-        tried.append((float(rtol), float(evals.mean()), err))
-        if err <= max_error:
-            return {
-                "rtol": float(rtol),
-                "evaluations": evals,
-                "mean_evaluations": float(evals.mean()),
-                "max_error": err,
-                "tried": tried,
-            }
-    return {
-        "rtol": math.nan,
-        "evaluations": None,
-        "mean_evaluations": math.nan,
-        "max_error": math.nan,
-        "tried": tried,
-    }
-
-
 def variant_calibration(name: str):
     """A variant of [2] calibrated on its own (:func:`run_calibration` with its terms).
 
@@ -610,23 +515,3 @@ def variant_error_study(name: str, d_over_L, phi0, phi1, alpha, calibration=None
     exact = exact_values(dl, p0, p1, a, 1.0)
     approx = dl * (1.0 + k_from_coef(cal.k_coef, a) * rear) + front
     return _error_table(dl, p0, p1, a, exact, approx, cal.domain)
-
-
-def matched_cost_study(n: int = 2000, seed: int = 11):
-    """Chapter 3's cost comparison, shared with ``benchmarks/longd_speed.py`` (the README).
-
-    ``n`` unions drawn inside the domain of [2] (:func:`sample_domain`, ``seed``); the
-    largest error of segplan's [2] on them (:func:`error_study`); Romberg at the loosest
-    tolerance that matches it (:func:`romberg_matched`, reference Romberg to ``1e-12``).
-
-    Returns
-    -------
-    dict
-        ``cases`` (the four arrays), ``reference``, ``approx_max_error`` and the entries of
-        :func:`romberg_matched` (``rtol``, ``mean_evaluations``, ``max_error``, ``tried``, ...).
-    """
-    cases = sample_domain(n, seed=seed)
-    reference = exact_values(*cases, 1.0, rtol=1e-12)
-    approx_max = float(error_study(*cases)["abs_error"].max())
-    out = romberg_matched(*cases, approx_max, reference=reference)
-    return {"cases": cases, "reference": reference, "approx_max_error": approx_max, **out}

@@ -50,7 +50,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..geometry import enlarge_polygon, polygons_overlap, pose_collides, pose_in_bounds
+from ..floors import place_disjoint
+from ..geometry import enlarge_polygon, pose_collides, pose_in_bounds
 from ..world import Robot, Scenario, load_scenario, make_scenario
 
 __all__ = [
@@ -133,27 +134,18 @@ def random_obstacle(rng: np.random.Generator, center) -> np.ndarray:
 def _place_obstacles(rng: np.random.Generator, n: int, bounds) -> list[np.ndarray]:
     """``n`` random obstacles inside ``bounds``, pairwise disjoint (raw polygons)."""
     xmin, ymin, xmax, ymax = bounds
-    placed: list[np.ndarray] = []
-    boxes = np.empty((n, 4))
-    for _ in range(_TRIES * max(1, n)):
-        if len(placed) == n:
-            return placed
+
+    def draw():
         poly = random_obstacle(rng, (rng.uniform(xmin, xmax), rng.uniform(ymin, ymax)))
         lo, hi = poly.min(axis=0), poly.max(axis=0)
         if lo[0] <= xmin or lo[1] <= ymin or hi[0] >= xmax or hi[1] >= ymax:
-            continue
-        k = len(placed)
-        near = np.flatnonzero(
-            (boxes[:k, 0] <= hi[0])
-            & (lo[0] <= boxes[:k, 2])
-            & (boxes[:k, 1] <= hi[1])
-            & (lo[1] <= boxes[:k, 3])
-        )
-        if any(polygons_overlap(poly, placed[i]) for i in near):
-            continue
-        boxes[k] = (*lo, *hi)
-        placed.append(poly)
-    raise ValueError(f"placed only {len(placed)} of {n} obstacles in {bounds}")  # pragma: no cover
+            return None
+        return poly, poly
+
+    placed = place_disjoint(draw, n, _TRIES * max(1, n))
+    if len(placed) < n:  # pragma: no cover
+        raise ValueError(f"placed only {len(placed)} of {n} obstacles in {bounds}")
+    return placed
 
 
 class _FreeTest:

@@ -47,6 +47,7 @@ from ..metrics import measure_scenario_path, plan_poses
 from ..path import NoPathError
 from ..world import Scenario
 from . import floors as fl
+from . import ompl_runner as om
 from . import peers
 from .verdicts import Criterion, claims_table, judge
 
@@ -221,18 +222,18 @@ def job_id(job: tuple) -> str:
 
 
 # -- OMPL side (stored) -------------------------------------------------------------------
-def ompl_row(job: tuple, resolution: float = peers.RESOLUTION) -> tuple[dict, list | None]:
-    """One OMPL run in a fresh process (:func:`segplan.studies.peers.solve_ompl_isolated`):
+def ompl_row(job: tuple, resolution: float = om.RESOLUTION) -> tuple[dict, list | None]:
+    """One OMPL run in a fresh process (:func:`segplan.studies.ompl_runner.solve_ompl_isolated`):
     its CSV row and its path (poses about every :data:`PATH_STEP` m, or None)."""
     group, sc, planner, budget, seed = job
-    r = peers.solve_ompl_isolated(sc, planner, budget, seed, "dubins", resolution=resolution)
+    r = om.solve_ompl_isolated(sc, planner, budget, seed, "dubins", resolution=resolution)
     row = {c: r.get(c, math.nan) for c in OMPL_COLUMNS}
     row.update(group=group, floor=sc.name, floor_key=fl.floor_key(sc), generator=fl.GENERATOR_VERSION)
     row.update(planner=planner, budget=float(budget), seed=int(seed))
     poses = r.get("poses")
     if poses is not None:
         P = np.asarray(poses)
-        k = max(1, round(PATH_STEP / peers.PLOT_STEP))
+        k = max(1, round(PATH_STEP / om.PLOT_STEP))
         P = P[np.unique(np.r_[np.arange(0, len(P), k), len(P) - 1])]
         poses = np.round(P, 3).tolist()
     return row, poses
@@ -272,7 +273,7 @@ def run_ompl(
 ) -> pd.DataFrame:
     """Run the OMPL jobs not stored yet, ``workers`` processes at a time; append each row
     to ``out`` as it finishes, the paths at the reference budget to ``paths_out``, and
-    keep ``provenance`` up to date (a session per call: :func:`segplan.studies.peers.provenance`
+    keep ``provenance`` up to date (a session per call: :func:`segplan.studies.ompl_runner.provenance`
     of ``argv``, with the runs done and the load average during them). Returns the whole
     stored table."""
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
@@ -291,7 +292,7 @@ def run_ompl(
         raise RuntimeError(f"{len(stale)} stored runs were measured on other floors: delete {out} first")
     todo = [j for j in jobs if job_id(j) not in done]
     record = json.loads(provenance.read_text()) if provenance.exists() else {"sessions": []}
-    session = peers.provenance(list(argv), None, workers)
+    session = om.provenance(list(argv), None, workers)
     session.update(
         runs_to_do=len(todo),
         note=(
@@ -311,8 +312,8 @@ def run_ompl(
             hard=[*HARD_SEEDS],
             turn_around=[*TURN_AROUND_SEEDS],
         ),
-        space="Dubins, radius L / tan(max_steer); validity segplan.studies.peers.SegmentValidity",
-        motion_check_resolution_m=peers.RESOLUTION,
+        space="Dubins, radius L / tan(max_steer); validity segplan.studies.ompl_runner.SegmentValidity",
+        motion_check_resolution_m=om.RESOLUTION,
         measured_by="segplan.metrics.measure_scenario_path, samples every 1 cm",
     )
     record["sessions"].append(session)
@@ -417,7 +418,7 @@ def warm_up(options: dict | None = None) -> float:
     return time.perf_counter() - t0
 
 
-def solve_segplan(scenario: Scenario, group: str = "", options: dict | None = None, step: float = peers.STEP):
+def solve_segplan(scenario: Scenario, group: str = "", options: dict | None = None, step: float = om.STEP):
     """segplan on one floor: its row (:data:`SEGPLAN_COLUMNS`) and the plan (or None).
 
     ``seconds`` is the wall time of the :func:`segplan.plan_scenario` call (search and,

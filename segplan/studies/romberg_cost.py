@@ -1,0 +1,134 @@
+"""Romberg's work on [1] against formula [2] at the same error (the book's chapter 3).
+
+Section "Approximate computation of cost function" compares the closed approximation [2]
+with "Romberg integration with the same maximum error bound". These helpers count the
+integrand evaluations Romberg needs for the exact LONGD [1] case by case
+(:func:`romberg_work`), find the loosest Romberg tolerance whose measured error matches
+[2]'s largest error (:func:`romberg_matched`), and make chapter 3's comparison on its
+unions (:func:`matched_cost_study`, shared with ``benchmarks/longd_speed.py`` and the
+README). The cases and [2]'s errors come from :mod:`segplan.studies.approx`; nothing here
+is part of the stable API.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..cost import exact_values, longd_integrand
+from ..romberg import romberg
+from .approx import error_study, sample_domain
+
+__all__ = ["MATCH_RTOLS", "matched_cost_study", "romberg_matched", "romberg_work"]
+
+
+def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
+    """Integrand evaluations Romberg needs for [1] to meet ``rtol``, case by case (``L = 1``).
+
+    Section "Approximate computation of cost function" compares [2] with "Romberg
+    integration with the same maximum error bound". Romberg's stopping rule
+    (:func:`segplan.romberg.romberg`) is applied to each case alone, from ``min_levels``
+    halvings on (level ``k`` uses ``2**k + 1`` points), so the count is the work that
+    bound asks for. :func:`segplan.longd_exact` uses at least 4 levels (17 points).
+
+    Returns
+    -------
+    evaluations : ndarray of int
+        Integrand evaluations per case.
+    value : ndarray
+        Romberg's LONGD per case.
+    """
+
+    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
+    evaluations = np.zeros(dl.size, dtype=int)
+    value = np.empty(dl.size)
+    for i in range(dl.size):
+        count = [0]
+
+        def f(tau, i=i, count=count):
+            count[0] += tau.size
+            return longd_integrand(tau, dl[i], p0[i], p1[i], a[i], 1.0)
+
+        value[i] = romberg(f, 0.0, 1.0, rtol=rtol, min_levels=min_levels)[0]
+        evaluations[i] = count[0]
+    return evaluations, value
+
+
+#: Tolerances tried by :func:`romberg_matched`, loosest first.
+MATCH_RTOLS = (2.5e-2, 1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5)
+
+
+def romberg_matched(d_over_L, phi0, phi1, alpha, max_error: float, rtols=MATCH_RTOLS, reference=None):
+    """Romberg on [1] at "the same maximum error bound" as [2]: the loosest tolerance that meets it.
+
+    Section "Approximate computation of cost function" compares [2] with "Romberg
+    integration with the same maximum error bound". Romberg's tolerance is an estimate, not
+    a bound, so the matching is measured: for each ``rtol`` in ``rtols`` (loosest first),
+    Romberg from level 1 (:func:`romberg_work`) on the given cases, and the first ``rtol``
+    whose largest relative error against ``reference`` is at most ``max_error`` (the
+    largest error of [2] on the same cases) is kept.
+
+    Parameters
+    ----------
+    d_over_L, phi0, phi1, alpha : array_like
+        Cases (``L = 1``, radians).
+    max_error : float
+        The maximum ``|relative error|`` to match (> 0).
+    rtols : sequence of float
+        Tolerances to try, loosest first.
+    reference : ndarray, optional
+        Exact LONGD of the cases; by default Romberg to ``1e-12``.
+
+    Returns
+    -------
+    dict
+        ``rtol`` (NaN if none of ``rtols`` meets ``max_error``), ``evaluations`` (per case,
+        at that ``rtol``), ``mean_evaluations``, ``max_error`` (Romberg's, at that
+        ``rtol``), and ``tried``: a list of ``(rtol, mean evaluations, max error)``.
+    """
+    if not max_error > 0:
+        raise ValueError(f"max_error must be positive, got {max_error}")
+    dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
+    ref = exact_values(dl, p0, p1, a, 1.0, rtol=1e-12) if reference is None else np.asarray(reference)
+    tried = []
+    for rtol in rtols:
+        evals, value = romberg_work(dl, p0, p1, a, rtol=rtol, min_levels=1)
+        err = float(np.max(np.abs(value / ref - 1.0)))
+        tried.append((float(rtol), float(evals.mean()), err))
+        if err <= max_error:
+            return {
+                "rtol": float(rtol),
+                "evaluations": evals,
+                "mean_evaluations": float(evals.mean()),
+                "max_error": err,
+                "tried": tried,
+            }
+    return {
+        "rtol": math.nan,
+        "evaluations": None,
+        "mean_evaluations": math.nan,
+        "max_error": math.nan,
+        "tried": tried,
+    }
+
+
+def matched_cost_study(n: int = 2000, seed: int = 11):
+    """Chapter 3's cost comparison, shared with ``benchmarks/longd_speed.py`` (the README).
+
+    ``n`` unions drawn inside the domain of [2] (:func:`segplan.studies.approx.sample_domain`,
+    ``seed``); the largest error of segplan's [2] on them
+    (:func:`segplan.studies.approx.error_study`); Romberg at the loosest
+    tolerance that matches it (:func:`romberg_matched`, reference Romberg to ``1e-12``).
+
+    Returns
+    -------
+    dict
+        ``cases`` (the four arrays), ``reference``, ``approx_max_error`` and the entries of
+        :func:`romberg_matched` (``rtol``, ``mean_evaluations``, ``max_error``, ``tried``, ...).
+    """
+    cases = sample_domain(n, seed=seed)
+    reference = exact_values(*cases, 1.0, rtol=1e-12)
+    approx_max = float(error_study(*cases)["abs_error"].max())
+    out = romberg_matched(*cases, approx_max, reference=reference)
+    return {"cases": cases, "reference": reference, "approx_max_error": approx_max, **out}
