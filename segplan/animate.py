@@ -119,7 +119,15 @@ def animate_path(
     (front,) = ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label="front wheel B")
     (body,) = ax.plot([], [], color="k", lw=3.0, solid_capstyle="round")
     (wheel,) = ax.plot([], [], "o", color="tab:orange", ms=5)
-    ax.legend(loc="best", fontsize="x-small")
+    # the legend's "best" place, found once with the whole path drawn, then kept: it does not
+    # jump between frames, and no frame pays for the search (it was most of a frame's time)
+    rear.set_data(A[:, 0], A[:, 1])
+    front.set_data(B[:, 0], B[:, 1])
+    legend = ax.legend(loc="best", fontsize="x-small")
+    fig.canvas.draw()
+    corner = legend.get_window_extent().transformed(ax.transAxes.inverted())
+    legend.remove()
+    ax.legend(loc="lower left", bbox_to_anchor=(corner.x0, corner.y0), borderaxespad=0.0, fontsize="x-small")
 
     def draw(k: int):
         i = idx[k] + 1
