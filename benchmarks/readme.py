@@ -131,10 +131,10 @@ def _git(*args: str) -> str:
 def time_commands() -> dict:
     """Run the README's two Quick-start commands from the repository root; their times and provenance.
 
-    Each command runs as the README types it (``bash -c``), one after the other; its output
-    goes to the terminal and is also kept to read ``.ci/build_book.sh``'s "book built in N s"
-    and pytest's summary line. Fails (SystemExit) if a command fails: a failed run is not
-    a time.
+    Each command runs as the README types it (``bash -c``, without ``PYTHONPATH``), one after
+    the other; its output goes to the terminal and is also kept to read
+    ``.ci/build_book.sh``'s "book built in N s" and pytest's summary line. Fails
+    (SystemExit) if a command fails: a failed run is not a time.
     """
     commands = quick_start_commands((ROOT / "README.md").read_text())
     record = {
@@ -147,11 +147,18 @@ def time_commands() -> dict:
         "venv_existed": (ROOT / ".venv" / "bin" / "python").exists(),
         "commands": [],
     }
+    # as on a fresh machine: no PYTHONPATH (this script may run with one, to import segplan)
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     for command in commands:
         load_before = os.getloadavg()
         start = time.perf_counter()
         proc = subprocess.Popen(
-            ["bash", "-c", command], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+            ["bash", "-c", command],
+            cwd=ROOT,
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
         )
         lines = []
         for line in proc.stdout:
