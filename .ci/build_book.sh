@@ -7,7 +7,8 @@
 # (a Sphinx warning, a broken reference, a cell error or anything a cell writes to stderr)
 # fails the build. It needs only the Python environment of environment.txt (MathJax comes
 # from the package sphinx-mathjax-offline): no npm, no apt, no network. Plain
-# `jupyter-book build book` works as well, without the strictness.
+# `jupyter-book build book` works as well, without the strictness. Every chapter is executed
+# afresh, two at a time (book/_ext/segplan_execute.py); the log gives each one's time.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

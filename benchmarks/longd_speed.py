@@ -44,6 +44,7 @@ import segplan  # noqa: E402
 from segplan.cost import longd_approx_intrinsic, longd_exact_intrinsic, longd_integrand  # noqa: E402
 from segplan.fit.formula2 import BOUND_MAX  # noqa: E402
 from segplan.studies.approx import sample_domain  # noqa: E402
+from segplan.studies.progress import progress  # noqa: E402
 from segplan.studies.romberg_cost import matched_cost_study, romberg_work  # noqa: E402
 
 
@@ -104,6 +105,15 @@ def main(argv=None) -> dict:
 
     rows = []  # (method, layer, mode, evaluations/s, max |relative error| on the ne cases)
     tight, loose = 1e-10, BOUND_MAX
+    # 2 layers x ([2] vectorised, scalar + 2 tolerances x Romberg vectorised, scalar), dispatch,
+    # the matched study and its 2 rates: a bar on a terminal only
+    bar = progress(total=2 * 6 + 4, desc="LONGD speed", unit="measurement")
+
+    def rate_of(fn, n_evals: int) -> float:
+        value = cpu_rate(fn, n_evals, args.repeats)
+        bar.update()
+        return value
+
     approx_error = err(longd_approx_intrinsic(*e_intr))
     exact_error = {r: err(longd_exact_intrinsic(*e_intr, rtol=r)) for r in (tight, loose)}
     for layer, approx, exact, loop, args_v in (
@@ -111,10 +121,8 @@ def main(argv=None) -> dict:
         ("intrinsic", longd_approx_intrinsic, longd_exact_intrinsic, intrinsic_loop, intr),
     ):
         head = tuple(np.asarray(v)[:ne] if np.ndim(v) else v for v in args_v)
-        rows.append(
-            ("[2]", layer, "vectorised", cpu_rate(lambda f=approx, a=args_v: f(*a), args.n, args.repeats))
-        )
-        rows.append(("[2]", layer, "scalar", cpu_rate(loop(approx, m), m, args.repeats)))
+        rows.append(("[2]", layer, "vectorised", rate_of(lambda f=approx, a=args_v: f(*a), args.n)))
+        rows.append(("[2]", layer, "scalar", rate_of(loop(approx, m), m)))
         for r in (tight, loose):
             name = f"Romberg rtol={r:g}"
             rows.append(
@@ -122,21 +130,21 @@ def main(argv=None) -> dict:
                     name,
                     layer,
                     "vectorised",
-                    cpu_rate(lambda f=exact, a=head, r=r: f(*a, rtol=r), ne, args.repeats),
+                    rate_of(lambda f=exact, a=head, r=r: f(*a, rtol=r), ne),
                 )
             )
-            rows.append((name, layer, "scalar", cpu_rate(loop(exact, ms, rtol=r), ms, args.repeats)))
-    rows.append(
-        ("longd (dispatch)", "public", "scalar", cpu_rate(public_loop(segplan.longd, m), m, args.repeats))
-    )
+            rows.append((name, layer, "scalar", rate_of(loop(exact, ms, rtol=r), ms)))
+    rows.append(("longd (dispatch)", "public", "scalar", rate_of(public_loop(segplan.longd, m), m)))
     # chapter 3's comparison at the same maximum error (same helper, same unions)
     matched = matched_cost_study(2_000, seed=11)
+    bar.update()
     mc = tuple(v[:ms] for v in matched["cases"])
     mc_scalar = [tuple(float(v[i]) for v in mc) for i in range(ms)]
-    rate_matched = cpu_rate(lambda: romberg_work(*mc, rtol=matched["rtol"], min_levels=1), ms, args.repeats)
-    rate_approx_same = cpu_rate(
-        lambda: [longd_approx_intrinsic(d, p, q, a, 1.0) for d, p, q, a in mc_scalar], ms, args.repeats
+    rate_matched = rate_of(lambda: romberg_work(*mc, rtol=matched["rtol"], min_levels=1), ms)
+    rate_approx_same = rate_of(
+        lambda: [longd_approx_intrinsic(d, p, q, a, 1.0) for d, p, q, a in mc_scalar], ms
     )
+    bar.close()
     matched_out = {
         "approx_max_error": matched["approx_max_error"],
         "rtol": matched["rtol"],

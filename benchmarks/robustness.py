@@ -28,6 +28,7 @@ import pandas as pd
 
 from segplan.studies import ompl_runner
 from segplan.studies import robustness as rb
+from segplan.studies.progress import progress, say
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -60,7 +61,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = ap.parse_args(argv)
     argv_list = ["benchmarks/robustness.py", *(sys.argv[1:] if argv is None else argv)]
     groups = rb.floor_groups(args.quick)
-    say = lambda s: print(s, file=sys.stderr, flush=True)  # noqa: E731
+
+    def ticking(bar):
+        """A ``progress`` callback of the study: the line above the bar, one step of the bar."""
+
+        def tick(line: str) -> None:
+            say(line)
+            bar.update()
+
+        return tick
+
     if args.ompl or args.quick:
         if not ompl_runner.ompl_available():
             say("OMPL is not installed (pip install 'segplan[peers]'): skipping the OMPL side")
@@ -72,7 +82,14 @@ def main(argv: Sequence[str] | None = None) -> int:
             )
             say(f"OMPL quick: {int(t['solved'].sum())} of {len(t)} solved")
         else:
-            rb.run_ompl(rb.ompl_jobs(groups), args.ompl_csv, workers=args.jobs, progress=say, argv=argv_list)
+            with progress(desc="OMPL", unit="run") as bar:  # the runs not stored yet: no total
+                rb.run_ompl(
+                    rb.ompl_jobs(groups),
+                    args.ompl_csv,
+                    workers=args.jobs,
+                    progress=ticking(bar),
+                    argv=argv_list,
+                )
     if args.no_segplan:
         return 0
     limit = args.max_expansions
@@ -84,7 +101,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     floors = [(g, sc) for g, scs in groups.items() for sc in scs]
     if not args.quick:
         floors += [("sweep", sc) for sc in rb.sweep_floors()]
-    seg, _ = rb.run_segplan(floors, options, progress=say)
+    with progress(total=len(floors), desc="segplan", unit="floor") as bar:
+        seg, _ = rb.run_segplan(floors, options, progress=ticking(bar))
     table = rb.compare(seg, rb.read_ompl(args.ompl_csv))
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.precision", 3):
         print(table.groupby("group")[["solved", "valid", "ompl_solved"]].sum().to_string())

@@ -44,6 +44,7 @@ import segplan  # noqa: E402
 from segplan import NoPathError, plan_scenario, random_world  # noqa: E402
 from segplan.constants import load as load_constants  # noqa: E402
 from segplan.frame import heuristic_coefficients  # noqa: E402
+from segplan.studies.progress import progress  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -126,17 +127,17 @@ def main(argv=None) -> int:
     )
     print(header)
     print("-" * len(header))
-    for sc in scenarios:
-        for h in args.heuristics:
-            r = bench(sc, h, args.runs)
-            rows.append(r)
-            print(
-                f"{r['scenario'][:38]:38s} {r['obstacles']:4d} {h:>1s} {str(r['found']):>5s} "
-                f"{r['median_ms']:7.1f} {r['wall_ms']:7.1f} "
-                f"{r['expanded']:5d} {r['generated']:5d} {r['nodes']:5d} {r['cost']:8.2f} "
-                f"{r['checks_per_s']:9.0f} {r['exact_per_s']:8.0f}",
-                flush=True,
-            )
+    todo = [(sc, h) for sc in scenarios for h in args.heuristics]
+    bar = progress(todo, desc="search speed", unit="floor x h'")
+    for sc, h in bar:
+        r = bench(sc, h, args.runs)
+        rows.append(r)
+        bar.write(  # above the bar on a terminal, a plain line elsewhere
+            f"{r['scenario'][:38]:38s} {r['obstacles']:4d} {h:>1s} {str(r['found']):>5s} "
+            f"{r['median_ms']:7.1f} {r['wall_ms']:7.1f} "
+            f"{r['expanded']:5d} {r['generated']:5d} {r['nodes']:5d} {r['cost']:8.2f} "
+            f"{r['checks_per_s']:9.0f} {r['exact_per_s']:8.0f}"
+        )
     floors = [r for r in rows if r["found"] and r["obstacles"] >= 8 and r["h"] == "a"]
     if floors:
         worst = max(r["median_ms"] for r in floors)

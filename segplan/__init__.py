@@ -18,6 +18,7 @@ README's diagram; enforced by the import-linter contract in ``pyproject.toml``):
 from .api import plan, plan_scenario
 from .collision import CollisionStats, collides, union_free, union_in_bounds
 from .cost import longd, longd_approx, longd_exact
+from .decompose import convex_pieces
 from .floors import random_world
 from .frame import optimal_alpha, optimal_alpha_intrinsic
 from .geometry import ConvexPolygon, pose_collides, pose_in_bounds
@@ -43,6 +44,7 @@ __all__ += ["CollisionStats", "ConvexPolygon", "collides", "pose_collides", "pos
 __all__ += ["union_free", "union_in_bounds"]
 __all__ += ["Robot", "Scenario", "ScenarioError", "load_scenario", "make_scenario"]
 __all__ += ["random_world", "save_scenario", "shipped_scenarios"]
+__all__ += ["convex_pieces"]
 __all__ += ["NoPathError", "Plan", "plan", "plan_scenario"]
 __all__ += ["longd", "longd_approx"]
 __all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses"]

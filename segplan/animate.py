@@ -119,7 +119,15 @@ def animate_path(
     (front,) = ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label="front wheel B")
     (body,) = ax.plot([], [], color="k", lw=3.0, solid_capstyle="round")
     (wheel,) = ax.plot([], [], "o", color="tab:orange", ms=5)
-    ax.legend(loc="best", fontsize="x-small")
+    # the legend's "best" place, found once with the whole path drawn, then kept: it does not
+    # jump between frames, and no frame pays for the search (it was most of a frame's time)
+    rear.set_data(A[:, 0], A[:, 1])
+    front.set_data(B[:, 0], B[:, 1])
+    legend = ax.legend(loc="best", fontsize="x-small")
+    fig.canvas.draw()
+    corner = legend.get_window_extent().transformed(ax.transAxes.inverted())
+    legend.remove()
+    ax.legend(loc="lower left", bbox_to_anchor=(corner.x0, corner.y0), borderaxespad=0.0, fontsize="x-small")
 
     def draw(k: int):
         i = idx[k] + 1
@@ -162,16 +170,41 @@ _ICONS = {
 }
 
 
+#: Colours of each embedded frame (a palette PNG): line art on a white floor needs few, and a
+#: palette frame is about a third of matplotlib's RGBA one.
+HTML_COLORS = 64
+
+_FRAME = re.compile(r'("data:image/png;base64,)((?:[A-Za-z0-9+/=]|\\\n)+)(")')
+
+
+def _palette_png(match: re.Match) -> str:
+    """One embedded frame of ``to_jshtml`` re-encoded as a PNG of :data:`HTML_COLORS` colours."""
+    import base64
+    import io
+
+    from PIL import Image
+
+    data = base64.b64decode(match.group(2).replace("\\\n", ""))
+    with Image.open(io.BytesIO(data)) as im:
+        small = im.convert("RGB").quantize(colors=HTML_COLORS, method=Image.Quantize.MEDIANCUT)
+    out = io.BytesIO()
+    small.save(out, format="png", optimize=True)
+    return match.group(1) + base64.b64encode(out.getvalue()).decode("ascii") + match.group(3)
+
+
 def to_html(anim: FuncAnimation) -> str:
     """The animation as one HTML string that plays offline (PNG frames, JavaScript player).
 
     matplotlib's ``to_jshtml`` with its one network resource removed: the stylesheet of
     the buttons' icons (Font Awesome, from a CDN) is dropped and the icons are written as
-    plain characters.
+    plain characters. Each frame is stored as a palette PNG of :data:`HTML_COLORS` colours
+    (Pillow), about a third of the size of matplotlib's RGBA frames, so that a page (and a
+    notebook that stores the animation) stays small.
     """
     if not isinstance(anim, FuncAnimation):
         raise ValueError(f"anim must be a matplotlib FuncAnimation, got {type(anim).__name__}")
     html = anim.to_jshtml(default_mode="loop")
+    html = _FRAME.sub(_palette_png, html)
     html = re.sub(r"<link[^>]*https?://[^>]*>", "", html)
     for icon, text in _ICONS.items():
         html = html.replace(f'<i class="{icon}"></i>', text)

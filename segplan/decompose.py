@@ -75,7 +75,41 @@ def as_outlines(obstacle, where: str = "polygon") -> list[np.ndarray]:
 
 
 def convex_pieces(vertices, where: str = "polygon") -> list[np.ndarray]:
-    """The strictly convex pieces of a simple polygon: ``decompose(vertices, where)[1]``."""
+    """Split a simple polygon into strictly convex pieces (beyond the paper).
+
+    The paper's collision test (section "Collision-detection algorithm") takes convex
+    polygons; this is how a non-convex obstacle (an L-shaped rack, a U-shaped bay) reaches
+    it: shapely's constrained Delaunay triangulation on the polygon's own vertices, then
+    triangles merged greedily while their union stays convex (the module docstring gives
+    the method). A segment misses the polygon iff it misses every piece.
+    ``decompose(vertices, where)[1]``.
+
+    Parameters
+    ----------
+    vertices : array_like, shape (k, 2)
+        The polygon's vertices in order, either orientation, not closed.
+    where : str
+        Names the polygon in error messages (e.g. ``"obstacles[3]"``).
+
+    Returns
+    -------
+    list of ndarray (n, 2)
+        Counter-clockwise strictly convex pieces with disjoint interiors whose union is the
+        polygon, every vertex an input vertex; a convex polygon gives one piece, itself.
+
+    Raises
+    ------
+    ValueError
+        Naming ``where`` and the vertex: wrong shape, fewer than 3 vertices, non-finite
+        coordinates, a repeated vertex, a self-intersecting boundary, zero area.
+
+    Examples
+    --------
+    >>> from segplan import convex_pieces
+    >>> L = [(0, 0), (4, 0), (4, 1), (1, 1), (1, 3), (0, 3)]
+    >>> len(convex_pieces(L))
+    2
+    """
     return decompose(vertices, where)[1]
 
 

@@ -85,6 +85,25 @@ def test_animation_frames_follow_the_front_wheel():
         animate.animate_path(poses[:, :2], sc.L)
 
 
+def test_html_animation_frames_are_small_palette_pngs():
+    import base64
+    import io
+
+    from PIL import Image
+
+    from segplan import animate
+
+    sc = segplan.load_scenario("single_obstacle")
+    anim = animate.animate_plan(segplan.plan_scenario(sc), sc, frames=3)
+    frames = re.findall(r'"data:image/png;base64,([^"]+)"', animate.to_html(anim))
+    assert len(frames) == 3
+    for b64 in frames:
+        with Image.open(io.BytesIO(base64.b64decode(b64.replace("\\\n", "")))) as im:
+            assert im.format == "PNG" and im.mode == "P" and len(im.getcolors()) <= animate.HTML_COLORS
+            w, h = im.size  # animate_path's figsize x dpi, to a pixel
+            assert abs(w - 5.5 * 50) <= 1 and abs(h - 3.8 * 50) <= 1
+
+
 def test_license_and_citation():
     assert (ROOT / "LICENSE").read_text().startswith("MIT License")
     import tomllib

@@ -56,3 +56,27 @@ def test_mutation_block_is_written_from_the_stored_run():
     equivalent = mutation.equivalent_mutants()
     survivors = {n for r in stored["results"] for n in r["survivors"]}
     assert equivalent <= survivors  # the list names only mutants of the stored run
+
+
+def test_commands_block_is_written_from_the_stored_run():
+    """The two commands' times in the README are those of benchmarks/results/readme_commands.json."""
+    import importlib.util
+    import json
+    import os
+    import sys
+
+    environ = dict(os.environ)  # the script pins BLAS threads for its own timings: not for this session
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    try:
+        spec = importlib.util.spec_from_file_location("readme_script", ROOT / "benchmarks" / "readme.py")
+        script = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(script)
+    finally:
+        sys.path.remove(str(ROOT / "benchmarks"))
+        os.environ.clear()
+        os.environ.update(environ)
+    stored = json.loads(script.COMMANDS_JSON.read_text())
+    assert [c["command"] for c in stored["commands"]] == quick_start_commands()  # the README's, as typed
+    assert all(c["seconds"] > 0 for c in stored["commands"]) and "book_build_seconds" in stored["commands"][0]
+    block = README.split(script.COMMANDS_START, 1)[1].split(script.COMMANDS_END, 1)[0]
+    assert block.strip() == script.commands_block(stored).strip()

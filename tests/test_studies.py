@@ -27,6 +27,7 @@ from segplan.studies.searches import (
     point_lower_bounds,
     rear_length,
     run_searches,
+    search_table,
     shortest_point_path,
 )
 
@@ -114,6 +115,24 @@ def test_run_searches_rejects_bad_input():
         run_searches(sc, {"a": "heuristic"})
     with pytest.raises(ValueError, match="heuristic"):
         run_searches(sc, {"a": {"heuristic": "z"}})
+
+
+def test_search_table_labels_every_record_and_drops_the_plans():
+    cases = [
+        ({"name": n}, segplan.load_scenario(SCENARIOS / f"{n}.json"))
+        for n in ("single_obstacle", "empty_room")
+    ]
+    searches = {"h'=a": {"heuristic": "a"}, "tiny": {"max_expansions": 1}}
+    table = search_table(cases, searches)
+    expected = []
+    for labels, sc in cases:
+        for r in run_searches(sc, searches):
+            del r["plan"], r["seconds"]
+            expected.append({**labels, **r})
+    assert [{k: v for k, v in r.items() if k != "seconds"} for r in table] == expected
+    assert list(table[0])[:2] == ["name", "search"]  # the labels first
+    with pytest.raises(ValueError, match="cases"):
+        search_table([("single_obstacle", cases[0][1])], searches)
 
 
 # -- shortest point path --------------------------------------------------------------------

@@ -61,8 +61,10 @@ GROUPS: list[tuple[str, str, list[str]]] = [
     ),
     (
         "Obstacles, enlargement and scenario files",
-        "Obstacles enlarged off-line by the robot's half-width; floors as JSON files.",
+        "Obstacles enlarged off-line by the robot's half-width; floors as JSON files. Beyond the "
+        "paper, a non-convex obstacle is split into convex pieces for the collision test.",
         [
+            "convex_pieces",
             "Scenario",
             "ScenarioError",
             "make_scenario",

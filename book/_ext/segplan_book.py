@@ -10,6 +10,9 @@ Loaded through ``sphinx.local_extensions`` in ``book/_config.yml``. It
   (``launch_buttons.thebe: false``), yet jupyter-book 1.0.4 always loads sphinx-thebe, whose
   inline ``const THEBE_JS_URL = "https://unpkg.com/..."`` is emitted twice per page and
   throws a SyntaxError in the browser;
+* stops the build when notebooks are taken from a jupyter-cache (``execute_notebooks:
+  cache``) without ``_ext/segplan_execute.py``, which empties that cache and executes every
+  chapter afresh at every build;
 * warns (an error under ``-W``) for every script or stylesheet a page would load from
   another host (a CDN, analytics), so a theme or extension update cannot bring one in
   unnoticed.
@@ -59,6 +62,16 @@ def check_mathjax(app: Sphinx) -> None:
         raise ConfigError(f"mathjax_path {path!r}: sphinx-mathjax-offline ships no {name!r} in {folder}")
 
 
+def check_execution(app: Sphinx) -> None:
+    """``execute_notebooks: cache`` only with ``_ext/segplan_execute.py``, which empties the cache
+    at every build: without it, myst-nb would reuse outputs executed in an earlier build."""
+    if app.config.nb_execution_mode == "cache" and "segplan_execute" not in app.config.extensions:
+        raise ConfigError(
+            "execute_notebooks: cache needs the local extension segplan_execute (sphinx.local_extensions), "
+            "which executes every chapter afresh at every build; without it use execute_notebooks: force"
+        )
+
+
 def _is_thebe(asset) -> bool:
     name = str(getattr(asset, "filename", "") or "")
     body = str(getattr(asset, "attributes", {}).get("body", ""))
@@ -80,5 +93,6 @@ def check_assets(app: Sphinx, pagename: str, templatename: str, context: dict, d
 
 def setup(app: Sphinx) -> dict:
     app.connect("builder-inited", check_mathjax)
+    app.connect("builder-inited", check_execution)
     app.connect("html-page-context", check_assets, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}

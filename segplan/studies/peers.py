@@ -54,7 +54,6 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from tqdm import tqdm
 
 from .. import world
 from ..api import plan_scenario
@@ -72,6 +71,7 @@ from .ompl_runner import (
     solve_ompl_isolated,
     thin_poses,
 )
+from .progress import progress
 
 __all__ = [
     "BUDGETS",
@@ -258,11 +258,6 @@ def quick_config(scenarios: Sequence[str] = ("single_obstacle",)) -> StudyConfig
     )
 
 
-def _progress(total: int, desc: str):
-    """A tqdm bar on a terminal; silent when stderr is not one (book build, pytest, logs)."""
-    return tqdm(total=total, desc=desc, unit="run", disable=None, leave=False)
-
-
 def run_segplan(config: StudyConfig) -> pd.DataFrame:
     """segplan's rows of a study: every scenario x heuristic x refine, in this process.
 
@@ -274,7 +269,7 @@ def run_segplan(config: StudyConfig) -> pd.DataFrame:
         warm_up()
     rows = []
     todo = [(n, h, r) for n in config.scenarios for h in config.heuristics for r in config.refine]
-    with _progress(len(todo), "segplan") as bar:
+    with progress(total=len(todo), desc="segplan") as bar:
         for name, h, refine in todo:
             row = solve_segplan(load(name), h, config.segplan_repeats, config.step, refine)
             del row["poses"]
@@ -307,7 +302,7 @@ def run_ompl(config: StudyConfig, jobs: int = 1) -> tuple[pd.DataFrame, dict]:
         return solve_ompl_isolated(load(s), p, b, seed, space, resolution=config.resolution, step=config.step)
 
     rows = []
-    with _progress(len(todo), "OMPL") as bar, ThreadPoolExecutor(max_workers=jobs) as pool:
+    with progress(total=len(todo), desc="OMPL") as bar, ThreadPoolExecutor(max_workers=jobs) as pool:
         for row in pool.map(one, todo):
             rows.append(row)
             bar.update()

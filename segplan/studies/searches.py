@@ -39,6 +39,7 @@ from ..path import NoPathError, Plan
 from ..romberg import romberg
 from ..union import Union
 from ..world import Scenario
+from .progress import progress
 from .verdicts import Criterion
 
 __all__ = [
@@ -51,6 +52,7 @@ __all__ = [
     "rear_length",
     "relative_changes",
     "run_searches",
+    "search_table",
     "shortest_point_path",
     "versus_baseline",
 ]
@@ -162,6 +164,39 @@ def run_searches(scenario: Scenario, searches: Mapping[str, Mapping], **common) 
                 "plan": p,
             }
         )
+    return records
+
+
+def search_table(cases, searches: Mapping[str, Mapping], desc: str = "searches", **common) -> list[dict]:
+    """:func:`run_searches` on many scenarios: one record per case and search, plans dropped.
+
+    The long loops of the search chapters (49 orientation pairs, 100 random worlds), with a
+    progress bar on a terminal (:func:`segplan.studies.progress.progress`; quiet in the book
+    and under pytest).
+
+    Parameters
+    ----------
+    cases : iterable of (dict, Scenario)
+        Each case's labels (for example ``{"seed": 3}``) and its scenario.
+    searches, **common
+        As in :func:`run_searches`.
+    desc : str
+        The progress bar's label.
+
+    Returns
+    -------
+    list of dict
+        For every case, in order, the records of :func:`run_searches` without ``plan``,
+        each preceded by the case's labels.
+    """
+    cases = list(cases)
+    records = []
+    for labels, scenario in progress(cases, desc=desc, unit="floor"):
+        if not isinstance(labels, Mapping):
+            raise ValueError(f"cases must hold (labels dict, Scenario) pairs, got labels {labels!r}")
+        for r in run_searches(scenario, searches, **common):
+            r.pop("plan")
+            records.append({**labels, **r})
     return records
 
 
