@@ -76,6 +76,7 @@ TARGETS = {
     # the cost and the frame
     "cost": [
         "tests/test_approx.py",
+        "tests/test_cost_gauss.py",  # the refinement's Gauss-Legendre cost
         "tests/test_derivation.py",
         "tests/test_romberg.py",
         "tests/test_fast_paths.py",
