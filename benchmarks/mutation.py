@@ -282,8 +282,9 @@ def rerun_survivors(args) -> int:
     """Run the stored survivors of ``args.modules`` again and record which are now killed.
 
     Tests are only ever added between the two runs (the package is unchanged), so a mutant
-    killed in the stored run stays killed; only the survivors need to run again. The
-    re-run's provenance is kept beside the first run's, per module.
+    killed in the stored run stays killed; only the survivors, and the mutants that no
+    targeted test called, need to run again. The re-run's provenance is kept beside the
+    first run's, per module.
     """
     stored = json.loads(args.json.read_text())
     rerun = {
@@ -294,27 +295,35 @@ def rerun_survivors(args) -> int:
     stored["meta"].setdefault("reruns", []).append(rerun)
     with open(args.log, "w") as log:
         for r in stored["results"]:
-            if r["module"] not in args.modules or not r["survivors"]:
+            # the survivors, and the mutants no targeted test called (tests may cover them now)
+            names = r["survivors"] + r["uncovered"]
+            if r["module"] not in args.modules or not names:
                 continue
             again = run_module(
-                r["module"], 0, args.seed, args.python, args.workers, args.show, log, only=r["survivors"]
+                r["module"], 0, args.seed, args.python, args.workers, args.show, log, only=names
             )
-            newly = [n for n in r["survivors"] if n not in again["survivors"]]
+            newly = [n for n in names if n not in again["survivors"] + again["uncovered"]]
             r["killed"] += again["killed"]
             r["timeout"] += again["timeout"]
             r["other"] += again["other"]
             r["unclassified"] += again["unclassified"]
             r["survivors"] = again["survivors"]
             r["survived"] = len(again["survivors"])
+            r["uncovered"] = again["uncovered"]
+            r["no_tests"] = len(again["uncovered"])
             decided = r["sample"] - r["other"]
             r["kill_rate"] = (r["killed"] + r["timeout"]) / decided if decided else float("nan")
             if "diffs" in r:
                 r["diffs"] = {n: d for n, d in r["diffs"].items() if n in r["survivors"]}
+                r["diffs"].update(again.get("diffs", {}))
             r.setdefault("reruns", []).append({**rerun, "killed_now": newly, "seconds": again["seconds"]})
-            total = len(newly) + r["survived"]
-            print(f"{r['module']:10s} re-run of {total} survivors: {len(newly)} now killed")
+            print(
+                f"{r['module']:10s} re-run of {len(names)} survivors and uncovered: {len(newly)} now killed"
+            )
             for name in r["survivors"]:
                 print(f"    still survives: {name}")
+            for name in r["uncovered"]:
+                print(f"    still no test calls it: {name}")
             args.json.write_text(json.dumps(stored, indent=1) + "\n")
     return 0
 
