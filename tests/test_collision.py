@@ -560,3 +560,22 @@ def test_quadratic_points_against_numpy_roots():
         assert np.allclose(np.sort(got[k]), want, rtol=1e-9, atol=1e-12 * scale), k
     lin = quadratic_points(np.array([0.0]), np.array([2.0]), np.array([-3.0]))
     assert np.allclose(lin, 1.5)
+
+
+@pytest.mark.parametrize(
+    ("a", "b", "c", "roots"),
+    [
+        (1.0, -1.0, 0.0, [0.0, 1.0]),  # q = 1 exactly: both roots, one of them 0
+        (2.0, -1.0, 0.0, [0.0, 0.5]),
+        (1.0, 0.0, 0.0, [0.0]),  # q = 0: the double root 0, once (no division by q)
+        (1.0, 0.0, -4.0, [-2.0, 2.0]),
+        (1.0, -2.0, 1.0, [1.0, 1.0]),  # a double root (both formulas give it)
+        (1.0, 0.0, 1.0, []),
+        (0.0, 2.0, -3.0, [1.5]),  # linear
+        (0.0, 0.0, 1.0, []),
+    ],
+)
+def test_scalar_quadratic_roots(a, b, c, roots):
+    """``sweep._quadratic_roots`` (the scalar events' roots) against hand-solved cases."""
+    got = sorted(swp._quadratic_roots(a, b, c))
+    assert got == pytest.approx(roots, abs=1e-15)

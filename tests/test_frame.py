@@ -337,6 +337,16 @@ def test_bad_intrinsic_input_and_method():
         optimal_alpha_intrinsic([1.0, 2.0], 0.1, 0.2, [1.0, -1.0])
 
 
+@pytest.mark.parametrize("which", range(4))
+def test_non_finite_scalar_is_named(which):
+    """The scalar path (plain Python numbers) names the argument that is not finite."""
+    args = [2.0, 0.1, 0.2, 1.0]
+    args[which] = math.nan
+    name = ("d", "phi0", "phi1", "L")[which]
+    with pytest.raises(ValueError, match=f"^{name} must be finite"):
+        optimal_alpha_intrinsic(*args)
+
+
 def test_exported_from_the_package():
     assert segplan.optimal_alpha is optimal_alpha
     assert "optimal_alpha" in segplan.__all__

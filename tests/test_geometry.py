@@ -310,3 +310,25 @@ def test_segment_hits_edges_at_the_tolerance_edges():
     # 5. a segment across the polygon, with both ends outside every edge's band
     assert hits((-5.0, 0.5), (5.0, 0.5), SQUARE, tol)
     assert hits((0.5, 0.5), (0.6, 0.5), SQUARE, tol)  # inside, both ends
+
+
+@pytest.mark.parametrize(
+    ("pts", "pattern"),
+    [
+        ([[0, 0], [2, 0], [1, 0], [1, 1]], r"vertex 1 \[2.0, 0.0\] doubles back"),
+        ([[0, 0], [1, 0], [2, 0], [1, 1]], r"vertex 1 \[1.0, 0.0\] is collinear with its neighbours"),
+        (
+            [[0, 0], [2, 0], [2, 2], [1, 0.5], [0, 2]],
+            r"turns clockwise at vertex 3 \[1.0, 0.5\] but counter-clockwise at vertex 0",
+        ),
+        (
+            [[0, 0], [0, 2], [1, 0.5], [2, 2], [2, 0]],
+            r"turns counter-clockwise at vertex 2 \[1.0, 0.5\] but clockwise at vertex 0",
+        ),
+    ],
+)
+def test_rejection_says_what_is_wrong(pts, pattern):
+    """The validator's message names the vertex and the fault: a vertex that doubles back is
+    not "collinear", and a dent is named by the sense it turns against the rest of the ring."""
+    with pytest.raises(ValueError, match=pattern):
+        geo.check_convex_polygon(pts)
