@@ -167,6 +167,23 @@ def test_exact_matches_brute_force_on_hard_cases(p0, p1, d):
     assert longd_quad(d, phi0, phi1, alpha, 1.0) == pytest.approx(best, rel=1e-6)
 
 
+# Opposite headings with L != 1 where the secant in tan(alpha) steps out of its bracket (found
+# by mutation testing: without the bisection fallback for such a step the search returns another
+# minimum, or Romberg fails at an infeasible frame)
+SECANT = [
+    (5.439638146543413, 0.0795976381064718, -0.6286722165231672, 0.4293767637663466),
+    (7.545747359970601, 0.10276111567527346, -0.696950819672967, 2.413018254776253),
+    (10.585812748024843, 0.00012864071842644265, -0.04038511058854066, 0.8277980191041172),
+]
+
+
+@pytest.mark.parametrize(("d", "phi0", "phi1", "L"), SECANT)
+def test_exact_matches_brute_force_where_the_secant_leaves_its_bracket(d, phi0, phi1, L):
+    alpha = optimal_alpha_intrinsic(d, phi0, phi1, L, method="exact")
+    best, _ = brute_force_min(d, phi0, phi1, L)
+    assert longd_quad(d, phi0, phi1, alpha, L) == pytest.approx(best, rel=1e-6)
+
+
 GRID = [(a, b, d) for a in (70, 25, 5) for b in (-70, -25, -5, 5, 25, 70) if abs(b) <= a for d in (1.0, 20.0)]
 
 
