@@ -240,6 +240,13 @@ def readme_block(stored: dict, equivalent: set[str]) -> str:
     ]
     if meta.get("note"):
         lines[0] += " " + meta["note"]
+    for merged in meta.get("merged", []):
+        names = ", ".join(f"`{m}`" for m in merged["modules"])
+        lines[0] += (
+            f" {names} ran later, on {merged['when']} at commit `{merged['commit'][:12]}` "
+            f"(seed {merged['seed']}, {merged['sample_per_module']} random mutants, by "
+            f"`{merged['command']}`), and was merged in (`--merge`)."
+        )
     reruns = sorted({(r["when"], r["commit"]) for m in stored["results"] for r in m.get("reruns", [])})
     if reruns:
         when = ", ".join(f"on {w} at commit `{c[:12]}`" for w, c in reruns)
@@ -328,6 +335,33 @@ def rerun_survivors(args) -> int:
     return 0
 
 
+def merge_run(args) -> int:
+    """Merge the modules of another run (``--merge RUN.json``) into ``--json`` (the stored run).
+
+    A module already stored is replaced; the others are kept. Each merged module keeps its
+    run's provenance (``run``: when, commit, command, seed, sample), and the stored
+    ``meta`` lists the merges.
+    """
+    stored = json.loads(args.json.read_text())
+    run = json.loads(args.merge.read_text())
+    m = run["meta"]
+    provenance = {k: m[k] for k in ("when", "commit", "command", "seed", "sample_per_module", "mutmut")}
+    modules = [r["module"] for r in run["results"]]
+    by_module = {r["module"]: i for i, r in enumerate(stored["results"])}
+    for r in run["results"]:
+        r = {**r, "run": provenance}
+        if r["module"] in by_module:
+            stored["results"][by_module[r["module"]]] = r
+        else:
+            stored["results"].append(r)
+    stored["meta"].setdefault("merged", []).append({**provenance, "modules": modules})
+    for module in modules:
+        stored["meta"]["targets"][module] = m["targets"][module]
+    args.json.write_text(json.dumps(stored, indent=1) + "\n")
+    print(f"merged {', '.join(modules)} from {args.merge} into {args.json}")
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--modules", nargs="+", default=list(TARGETS), choices=list(TARGETS))
@@ -340,6 +374,12 @@ def main(argv=None) -> int:
     parser.add_argument("--log", type=Path, default=Path(tempfile.gettempdir()) / "segplan-mutmut.log")
     parser.add_argument("--readme", action="store_true", help="only rewrite the README's block")
     parser.add_argument(
+        "--merge",
+        type=Path,
+        metavar="RUN_JSON",
+        help="merge the modules of another run into --json (a module stored there is replaced)",
+    )
+    parser.add_argument(
         "--rerun-survivors",
         action="store_true",
         help="run the survivors stored in --json again (after tests were added) and update it",
@@ -350,6 +390,9 @@ def main(argv=None) -> int:
         return 0
     if args.rerun_survivors:
         return rerun_survivors(args)
+    if args.merge:
+        args.json = args.json or STORED
+        return merge_run(args)
     meta = {
         "when": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
         "host": os.uname().nodename,
