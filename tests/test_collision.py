@@ -144,8 +144,23 @@ def random_polygon(rng, u: Union, kind: str) -> np.ndarray:
 
 
 def dense_collides(u: Union, poly, n: int = N_DENSE) -> bool:
+    """Does any of ``n`` sampled segments touch the polygon? (shapely decides every candidate)."""
     A, B = segments_at(u, u.xs(n))
-    return bool(shapely.intersects(shapely.linestrings(np.stack((A, B), 1)), shapely.Polygon(poly)).any())
+    poly = np.asarray(poly, dtype=float)
+    (x0, y0), (x1, y1) = poly.min(axis=0), poly.max(axis=0)
+    # only the segments whose bounding box meets the polygon's can touch it (exact comparisons):
+    # about 3x faster than asking shapely about all of them, the same answers
+    near = (
+        (np.minimum(A[:, 0], B[:, 0]) <= x1)
+        & (np.maximum(A[:, 0], B[:, 0]) >= x0)
+        & (np.minimum(A[:, 1], B[:, 1]) <= y1)
+        & (np.maximum(A[:, 1], B[:, 1]) >= y0)
+    )
+    if not near.any():
+        return False
+    P = shapely.Polygon(poly)
+    shapely.prepare(P)
+    return bool(shapely.intersects(P, shapely.linestrings(np.stack((A[near], B[near]), 1))).any())
 
 
 def distance_at(u: Union, poly, x: float) -> float:
