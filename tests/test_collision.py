@@ -378,9 +378,9 @@ def test_union_in_bounds_matches_dense_sampling():
         bounds = (lo[0] - scale[0], lo[1] - scale[1], hi[0] + scale[2], hi[1] + scale[3])
         if not (bounds[0] < bounds[2] and bounds[1] < bounds[3]):
             continue
-        ref = bool(
-            shapely.contains_properly(shapely.box(*bounds), shapely.linestrings(np.stack((A, B), 1))).all()
-        )
+        # the open box contains a segment iff it contains both end points (it is convex): exact
+        # comparisons, the answers of shapely.contains_properly at a tenth of its time
+        ref = bool(np.all(pts > bounds[:2]) and np.all(pts < bounds[2:]))
         got = col.union_in_bounds(u, bounds)
         if ref and not got:
             alarms += 1
