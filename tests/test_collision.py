@@ -604,7 +604,7 @@ def test_quick_rejection_margin_is_the_stated_bound_and_holds():
     ``max|f''|`` taken here from dense samples of the union's own ``f''``."""
     rng = np.random.default_rng(7)
     branches = set()
-    for _ in range(60):
+    for _ in range(30):  # 20 extended, 10 not
         u = random_union(rng)
         sw = swp.Sweep(u)
         L, X = u.L, u.x_end

@@ -244,7 +244,7 @@ def segments_near_polygons(draw):
     return poly, tol, a, b
 
 
-@settings(max_examples=300)
+@settings(max_examples=200)  # ~60 % hits within tol, ~30 % apart; the edges by hand below
 @given(segments_near_polygons())
 def test_segment_hits_edges_within_tolerance_against_shapely(case):
     """The planner's scalar predicate with a tolerance (separating axes, ``tol > 0``):
