@@ -76,6 +76,7 @@ TARGETS = {
     # the cost and the frame
     "cost": [
         "tests/test_approx.py",
+        "tests/test_cost_gauss.py",  # the refinement's Gauss-Legendre cost
         "tests/test_derivation.py",
         "tests/test_romberg.py",
         "tests/test_fast_paths.py",
@@ -239,6 +240,13 @@ def readme_block(stored: dict, equivalent: set[str]) -> str:
     ]
     if meta.get("note"):
         lines[0] += " " + meta["note"]
+    for merged in meta.get("merged", []):
+        names = ", ".join(f"`{m}`" for m in merged["modules"])
+        lines[0] += (
+            f" {names} ran later, on {merged['when']} at commit `{merged['commit'][:12]}` "
+            f"(seed {merged['seed']}, {merged['sample_per_module']} random mutants, by "
+            f"`{merged['command']}`), and was merged in (`--merge`)."
+        )
     reruns = sorted({(r["when"], r["commit"]) for m in stored["results"] for r in m.get("reruns", [])})
     if reruns:
         when = ", ".join(f"on {w} at commit `{c[:12]}`" for w, c in reruns)
@@ -281,8 +289,9 @@ def rerun_survivors(args) -> int:
     """Run the stored survivors of ``args.modules`` again and record which are now killed.
 
     Tests are only ever added between the two runs (the package is unchanged), so a mutant
-    killed in the stored run stays killed; only the survivors need to run again. The
-    re-run's provenance is kept beside the first run's, per module.
+    killed in the stored run stays killed; only the survivors, and the mutants that no
+    targeted test called, need to run again. The re-run's provenance is kept beside the
+    first run's, per module.
     """
     stored = json.loads(args.json.read_text())
     rerun = {
@@ -293,28 +302,63 @@ def rerun_survivors(args) -> int:
     stored["meta"].setdefault("reruns", []).append(rerun)
     with open(args.log, "w") as log:
         for r in stored["results"]:
-            if r["module"] not in args.modules or not r["survivors"]:
+            # the survivors, and the mutants no targeted test called (tests may cover them now)
+            names = r["survivors"] + r["uncovered"]
+            if r["module"] not in args.modules or not names:
                 continue
             again = run_module(
-                r["module"], 0, args.seed, args.python, args.workers, args.show, log, only=r["survivors"]
+                r["module"], 0, args.seed, args.python, args.workers, args.show, log, only=names
             )
-            newly = [n for n in r["survivors"] if n not in again["survivors"]]
+            newly = [n for n in names if n not in again["survivors"] + again["uncovered"]]
             r["killed"] += again["killed"]
             r["timeout"] += again["timeout"]
             r["other"] += again["other"]
             r["unclassified"] += again["unclassified"]
             r["survivors"] = again["survivors"]
             r["survived"] = len(again["survivors"])
+            r["uncovered"] = again["uncovered"]
+            r["no_tests"] = len(again["uncovered"])
             decided = r["sample"] - r["other"]
             r["kill_rate"] = (r["killed"] + r["timeout"]) / decided if decided else float("nan")
             if "diffs" in r:
                 r["diffs"] = {n: d for n, d in r["diffs"].items() if n in r["survivors"]}
+                r["diffs"].update(again.get("diffs", {}))
             r.setdefault("reruns", []).append({**rerun, "killed_now": newly, "seconds": again["seconds"]})
-            total = len(newly) + r["survived"]
-            print(f"{r['module']:10s} re-run of {total} survivors: {len(newly)} now killed")
+            print(
+                f"{r['module']:10s} re-run of {len(names)} survivors and uncovered: {len(newly)} now killed"
+            )
             for name in r["survivors"]:
                 print(f"    still survives: {name}")
+            for name in r["uncovered"]:
+                print(f"    still no test calls it: {name}")
             args.json.write_text(json.dumps(stored, indent=1) + "\n")
+    return 0
+
+
+def merge_run(args) -> int:
+    """Merge the modules of another run (``--merge RUN.json``) into ``--json`` (the stored run).
+
+    A module already stored is replaced; the others are kept. Each merged module keeps its
+    run's provenance (``run``: when, commit, command, seed, sample), and the stored
+    ``meta`` lists the merges.
+    """
+    stored = json.loads(args.json.read_text())
+    run = json.loads(args.merge.read_text())
+    m = run["meta"]
+    provenance = {k: m[k] for k in ("when", "commit", "command", "seed", "sample_per_module", "mutmut")}
+    modules = [r["module"] for r in run["results"]]
+    by_module = {r["module"]: i for i, r in enumerate(stored["results"])}
+    for r in run["results"]:
+        r = {**r, "run": provenance}
+        if r["module"] in by_module:
+            stored["results"][by_module[r["module"]]] = r
+        else:
+            stored["results"].append(r)
+    stored["meta"].setdefault("merged", []).append({**provenance, "modules": modules})
+    for module in modules:
+        stored["meta"]["targets"][module] = m["targets"][module]
+    args.json.write_text(json.dumps(stored, indent=1) + "\n")
+    print(f"merged {', '.join(modules)} from {args.merge} into {args.json}")
     return 0
 
 
@@ -330,6 +374,12 @@ def main(argv=None) -> int:
     parser.add_argument("--log", type=Path, default=Path(tempfile.gettempdir()) / "segplan-mutmut.log")
     parser.add_argument("--readme", action="store_true", help="only rewrite the README's block")
     parser.add_argument(
+        "--merge",
+        type=Path,
+        metavar="RUN_JSON",
+        help="merge the modules of another run into --json (a module stored there is replaced)",
+    )
+    parser.add_argument(
         "--rerun-survivors",
         action="store_true",
         help="run the survivors stored in --json again (after tests were added) and update it",
@@ -340,6 +390,9 @@ def main(argv=None) -> int:
         return 0
     if args.rerun_survivors:
         return rerun_survivors(args)
+    if args.merge:
+        args.json = args.json or STORED
+        return merge_run(args)
     meta = {
         "when": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
         "host": os.uname().nodename,

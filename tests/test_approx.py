@@ -306,6 +306,24 @@ def test_bad_entry_in_arrays_raises_value_error(fn, n):
     assert np.all(np.isfinite(fn(p0, p1, alpha, 1.0)))
 
 
+@pytest.mark.parametrize("fn", [segplan.longd_approx, segplan.longd])
+def test_large_malformed_arrays_get_the_clear_error(fn):
+    """Above 2 BLOCK cases the input is validated block by block; a malformed pose array
+    (last axis not 3) must still get the message naming it, not numpy's broadcast error."""
+    n = 2 * BLOCK + 7
+    with pytest.raises(ValueError, match=rf"p1 must have a last axis of length 3 .* shape \({n}, 2\)"):
+        fn(np.zeros((n, 3)), np.ones((n, 2)), np.full(n, 0.1), 1.0)
+    with pytest.raises(ValueError, match=r"p0 must have a last axis of length 3"):
+        fn(np.zeros((n, 4)), np.ones((n, 3)), np.full(n, 0.1), 1.0)
+
+
+def test_non_finite_alpha_is_named():
+    with pytest.raises(ValueError, match=r"^alpha must be finite \(radians\)$"):
+        segplan.longd_exact((0, 0, 0), (1, 0, 0), math.nan, 1.0)
+    with pytest.raises(ValueError, match=r"^alpha must be finite \(radians\)$"):
+        segplan.longd_approx(np.zeros((3, 3)), np.tile([1.0, 0.0, 0.0], (3, 1)), [0.0, math.inf, 0.0], 1.0)
+
+
 # -- the studies the book uses ---------------------------------------------------------------
 def test_study_tables():
     df = error_study(*sample_wide(500, seed=1))

@@ -152,6 +152,9 @@ def test_workspace_pose_free_is_the_one_pose_predicate():
     rng = np.random.default_rng(8)
     x0, y0, x1, y1 = world.free_bounds
     L = world.robot.L
+    # the oracle on polygon objects built once (given arrays, pose_conflict builds them on
+    # every call: that was two thirds of this test's time); the same predicate
+    polygons = [ConvexPolygon(p, check=False) for p in world.enlarged]
     free = 0
     for j in range(3000):
         p = Pose(
@@ -162,9 +165,10 @@ def test_workspace_pose_free_is_the_one_pose_predicate():
             vx, vy = poly[int(rng.integers(len(poly)))]
             eps = float(rng.choice([-1e-9, 0.0, 1e-9, 1e-6]))
             p = Pose(float(vx) + eps, float(vy), p.theta) if j % 8 else Pose(x1 - L + eps, p.y, 0.0)
-        expected = pose_conflict(p, L, world.enlarged, world.free_bounds) is None
+        expected = pose_conflict(p, L, polygons, world.free_bounds) is None
         assert ws.pose_free(p) == expected
-        assert world.is_free(p) == expected
+        if j % 4 == 0 or j % 10 == 1:  # Scenario.is_free: pose_conflict on the arrays (its wiring)
+            assert world.is_free(p) == expected
         free += expected
     assert 300 < free < 2700
 

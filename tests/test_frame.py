@@ -167,6 +167,23 @@ def test_exact_matches_brute_force_on_hard_cases(p0, p1, d):
     assert longd_quad(d, phi0, phi1, alpha, 1.0) == pytest.approx(best, rel=1e-6)
 
 
+# Opposite headings with L != 1 where the secant in tan(alpha) steps out of its bracket (found
+# by mutation testing: without the bisection fallback for such a step the search returns another
+# minimum, or Romberg fails at an infeasible frame)
+SECANT = [
+    (5.439638146543413, 0.0795976381064718, -0.6286722165231672, 0.4293767637663466),
+    (7.545747359970601, 0.10276111567527346, -0.696950819672967, 2.413018254776253),
+    (10.585812748024843, 0.00012864071842644265, -0.04038511058854066, 0.8277980191041172),
+]
+
+
+@pytest.mark.parametrize(("d", "phi0", "phi1", "L"), SECANT)
+def test_exact_matches_brute_force_where_the_secant_leaves_its_bracket(d, phi0, phi1, L):
+    alpha = optimal_alpha_intrinsic(d, phi0, phi1, L, method="exact")
+    best, _ = brute_force_min(d, phi0, phi1, L)
+    assert longd_quad(d, phi0, phi1, alpha, L) == pytest.approx(best, rel=1e-6)
+
+
 GRID = [(a, b, d) for a in (70, 25, 5) for b in (-70, -25, -5, 5, 25, 70) if abs(b) <= a for d in (1.0, 20.0)]
 
 
@@ -335,6 +352,16 @@ def test_bad_intrinsic_input_and_method():
         optimal_alpha_intrinsic(1.0, 0.1, "east", 1.0)
     with pytest.raises(ValueError, match="L must"):
         optimal_alpha_intrinsic([1.0, 2.0], 0.1, 0.2, [1.0, -1.0])
+
+
+@pytest.mark.parametrize("which", range(4))
+def test_non_finite_scalar_is_named(which):
+    """The scalar path (plain Python numbers) names the argument that is not finite."""
+    args = [2.0, 0.1, 0.2, 1.0]
+    args[which] = math.nan
+    name = ("d", "phi0", "phi1", "L")[which]
+    with pytest.raises(ValueError, match=f"^{name} must be finite"):
+        optimal_alpha_intrinsic(*args)
 
 
 def test_exported_from_the_package():

@@ -12,6 +12,12 @@ repeating the first vertex, the orientation reversed. The convex validator and
 polygons; so do the three scenario entry points, which also take simple non-convex
 polygons (issue 14, split by :mod:`segplan.decompose`): every convex polygon, and a
 non-convex one only if it is simple (shapely's ``is_valid``). Rejection names the polygon.
+
+The segment and polygon predicates against shapely: ``polygons_overlap`` (exact, closed
+polygons: lattice coordinates decide touching exactly, a gap of one ulp is apart) and the
+planner's scalar ``segment_hits_edges`` with a tolerance (a segment within ``tol`` is a hit,
+a hit lies within the polygon grown by ``tol`` with mitred corners; hand cases at exactly
+``tol`` and one ulp past it, for each kind of separating axis and the bounding box).
 """
 
 from __future__ import annotations
@@ -22,7 +28,7 @@ import math
 import numpy as np
 import pytest
 import shapely
-from hypothesis import given, settings
+from hypothesis import event, example, given, settings
 from hypothesis import strategies as st
 
 import segplan
@@ -86,7 +92,9 @@ def test_every_entry_point_accepts_the_same_polygons(pts):
     by_collides = accepted(lambda: segplan.collides(FAR_UNION, pts))
     by_make = accepted(lambda: segplan.make_scenario(segplan.Robot(L), START, GOAL, [pts]))
     by_load = accepted(lambda: segplan.world.loads_scenario(scenario_text(pts)))
-    by_plan = accepted(lambda: segplan.plan(START, GOAL, [pts], L))
+    # the default planner without refining its plan (a straight union 2.5 km from the polygon:
+    # refining it checks no input and took two thirds of this test's time)
+    by_plan = accepted(lambda: segplan.plan(START, GOAL, [pts], L, refine=False))
     assert by_collides == by_validator  # the paper's collision test: convex polygons
     assert by_make == by_load == by_plan  # scenarios: any simple polygon
     if by_validator:
@@ -142,3 +150,187 @@ def test_as_polygon_validates_by_default():
     with pytest.raises(ValueError, match="convex"):
         as_polygon(dart)
     assert len(as_polygon(dart, check=False)) == 4
+
+
+# -- the segment and polygon predicates against shapely --------------------------------------
+# (issue 15's mutation run: polygons_overlap and segment_hits_edges had no targeted test)
+def lattice_hull(points) -> list:
+    """Counter-clockwise strict convex hull of integer points (monotone chain), or [] if flat."""
+    pts = sorted(set(points))
+
+    def half(seq):
+        out = []
+        for p in seq:
+            while len(out) >= 2 and (
+                (out[-1][0] - out[-2][0]) * (p[1] - out[-2][1])
+                - (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0])
+                <= 0
+            ):
+                out.pop()
+            out.append(p)
+        return out[:-1]
+
+    hull = half(pts) + half(pts[::-1])
+    return hull if len(hull) >= 3 else []
+
+
+lattice_polygons = (
+    st.lists(st.tuples(st.integers(0, 10), st.integers(0, 10)), min_size=3, max_size=12)
+    .map(lattice_hull)
+    .filter(bool)  # all points collinear: rare
+)
+UNIT = [(0, 0), (1, 0), (1, 1), (0, 1)]
+
+
+# 150 examples: on a 10 x 10 lattice, touching (shared vertices, shared edges, a vertex on an
+# edge) is common; the hand examples pin each kind and the one-sided separations.
+@settings(max_examples=150)
+@given(lattice_polygons, lattice_polygons)
+@example(UNIT, [(1, 0), (2, 0), (2, 1), (1, 1)])  # a shared edge
+@example(UNIT, [(1, 1), (2, 1), (2, 2)])  # a shared vertex
+@example(UNIT, [(1, 0), (3, -1), (3, 2)])  # q's vertex on p's edge
+@example(UNIT, [(0, 2), (1, 2), (1, 3)])  # apart along p's axis only
+@example(UNIT, [(2, 0), (2, 2), (0, 2)])  # apart along q's (slanted) axis only: x + y = 2 vs 1 + 1
+@example([(2, 0), (2, 2), (0, 2)], UNIT)  # ... and the other way round
+@example([(0, 2), (2, 0), (2, 2)], [(0, 0), (1, 0), (1, 1), (0, 1)])  # touching at the corner (1, 1)
+@example(UNIT, [(-1, -1), (3, -1), (3, 3), (-1, 3)])  # one inside the other
+def test_polygons_overlap_agrees_with_shapely(p, q):
+    """Integer coordinates: exact arithmetic, so touching is decided exactly (touching overlaps)."""
+    p, q = geo.check_convex_polygon(p), geo.check_convex_polygon(q)
+    want = shapely.Polygon(p).intersects(shapely.Polygon(q))
+    assert geo.polygons_overlap(p, q) == want
+    assert geo.polygons_overlap(q, p) == want
+
+
+def test_polygons_overlap_at_one_ulp():
+    """Closed polygons: a shared edge overlaps, a gap of one ulp does not (no tolerance)."""
+    p = geo.check_convex_polygon(UNIT)
+    x = math.nextafter(1.0, 2.0)
+    apart = geo.check_convex_polygon([(x, 0.0), (2.0, 0.0), (2.0, 1.0), (x, 1.0)])
+    touching = geo.check_convex_polygon([(1.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0)])
+    assert not geo.polygons_overlap(p, apart) and not geo.polygons_overlap(apart, p)
+    assert geo.polygons_overlap(p, touching) and geo.polygons_overlap(touching, p)
+    # the slanted case: q's hypotenuse x + y = 2 + 4e-16 (the sum of two floats) misses p's corner
+    y = math.nextafter(2.0, 3.0)
+    q = geo.check_convex_polygon([(y, 0.0), (y, y), (0.0, y)])
+    assert not geo.polygons_overlap(p, q) and not geo.polygons_overlap(q, p)
+    assert shapely.Polygon(q).distance(shapely.Polygon(p)) > 0
+
+
+def mitred(poly: np.ndarray, tol: float):
+    """The polygon grown by ``tol`` with mitred corners (the intersection of its offset half-planes)."""
+    return shapely.Polygon(poly).buffer(tol, join_style="mitre", mitre_limit=1e6)
+
+
+@st.composite
+def segments_near_polygons(draw):
+    """A convex polygon (radius 0.3-5), a tolerance and a segment starting within ~3 tol of its boundary."""
+    k = draw(st.integers(3, 9))
+    r = draw(st.floats(0.3, 5.0))
+    gaps = np.array(draw(st.lists(st.floats(0.2, 1.0), min_size=k, max_size=k)))
+    ang = np.cumsum(gaps) / gaps.sum() * 2.0 * math.pi + draw(st.floats(0.0, 6.3))
+    centre = np.array([draw(st.floats(-20.0, 20.0)), draw(st.floats(-20.0, 20.0))])
+    poly = geo.check_convex_polygon(centre + r * np.column_stack((np.cos(ang), np.sin(ang))))
+    tol = draw(st.floats(1e-3, 0.5)) * r
+    # the start: a boundary point (a vertex, or a point of an edge), moved out by 0..3 tol
+    i = draw(st.integers(0, len(poly) - 1))
+    t = draw(st.sampled_from([0.0, 0.5, 1.0]) | st.floats(0.0, 1.0))
+    p = poly[i] + t * (poly[(i + 1) % len(poly)] - poly[i])
+    out = math.atan2(*(p - centre)[::-1]) + draw(st.floats(-1.2, 1.2))  # outwards, roughly
+    a = p + draw(st.floats(0.0, 3.0)) * tol * np.array([math.cos(out), math.sin(out)])
+    th = out + draw(st.floats(-1.8, 1.8))  # mostly away from the polygon: near-misses, not crossings
+    length = draw(st.floats(1e-3, 3.0)) * r
+    b = a + length * np.array([math.cos(th), math.sin(th)])
+    return poly, tol, a, b
+
+
+@settings(max_examples=200)  # ~60 % hits within tol, ~30 % apart; the edges by hand below
+@given(segments_near_polygons())
+def test_segment_hits_edges_within_tolerance_against_shapely(case):
+    """The planner's scalar predicate with a tolerance (separating axes, ``tol > 0``):
+
+    - never a miss: a segment within ``tol`` of the polygon (shapely's distance) is a hit;
+    - never far off: a hit meets the polygon grown by ``tol`` with mitred corners (every
+      separating axis is a unit edge normal or the segment's normal, so an answer "apart"
+      needs a separation above ``tol`` on one of them; the mitred polygon is what no axis
+      separates by more than ``tol`` from the polygon's own edge half-planes).
+    """
+    poly, tol, a, b = case
+    P = geo.ConvexPolygon(poly)
+    hit = geo.segment_hits_edges(float(a[0]), float(a[1]), *(b - a).tolist(), geo.edge_list(P), tol)
+    seg = shapely.LineString([a, b])
+    scale = 1e-9 * (1.0 + np.abs(poly).max())
+    dist = seg.distance(shapely.Polygon(poly))
+    if dist <= tol - scale:
+        event("within tol: a hit")
+        assert hit, f"missed a segment at {dist:.6g} <= tol {tol:.6g}"
+    elif seg.distance(mitred(poly, tol)) > scale:
+        event("outside the mitred polygon: apart")
+        assert not hit, f"a hit at {dist:.6g} (tol {tol:.6g}) outside the mitred polygon"
+    else:
+        event("between: either answer")
+    # the array path decides the same (the same separating axes, the same order)
+    assert hit == geo.segment_hits_polygon(a, b, P, tol=tol)
+
+
+SQUARE = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+
+
+def hits(a, b, poly, tol) -> bool:
+    return geo.segment_hits_edges(
+        a[0], a[1], b[0] - a[0], b[1] - a[1], geo.edge_list(geo.ConvexPolygon(poly)), tol
+    )
+
+
+def test_segment_hits_edges_at_the_tolerance_edges():
+    """Exactly representable cases: a separation of exactly ``tol`` touches, one ulp more is apart."""
+    tol, above = 0.25, math.nextafter(1.25, 2.0)
+    # 1. an edge normal separates: a segment parallel to the top edge, at distance tol
+    assert hits((0.25, 1.25), (0.75, 1.25), SQUARE, tol)
+    assert not hits((0.25, above), (0.75, above), SQUARE, tol)
+    assert not hits((0.25, 1.25), (0.75, 1.25), SQUARE, math.nextafter(tol, 0.0))
+    # 2. only the segment's normal separates: direction (6, 8), its line 0.25 from the vertex (1, 0)
+    a, b = (-1.6875, -4.0), (4.3125, 4.0)
+    assert shapely.LineString([a, b]).distance(shapely.Polygon(SQUARE)) == pytest.approx(0.25, abs=1e-15)
+    assert hits(a, b, SQUARE, tol)
+    assert not hits(a, b, SQUARE, math.nextafter(tol, 0.0))
+    assert hits(a, b, SQUARE, 0.2500001) and not hits(a, b, SQUARE, 0.2499999)
+    # 3. the mitred corner counts as touching: 0.25 from both edges of the corner (1, 1) is
+    # 0.354 from the square, yet no axis separates by more than 0.25 (conservative, never a miss)
+    a, b = (1.25, 1.25), (3.0, 1.25)
+    assert shapely.LineString([a, b]).distance(shapely.Polygon(SQUARE)) > tol
+    assert hits(a, b, SQUARE, tol)
+    assert not hits(a, b, SQUARE, 0.24)
+    # 4. the bounding box rejects what the axes alone would not: beyond the acute corner (1, 0)
+    # of a right triangle, 0.5 tol below its base, more than tol right of its box
+    tri = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]
+    a, b = (1.375, -0.125), (1.55, -0.125)
+    assert shapely.LineString([a, b]).distance(shapely.Polygon(tri)) > tol
+    assert shapely.LineString([a, b]).intersects(mitred(np.array(tri), tol))  # inside the mitre
+    assert not hits(a, b, tri, tol)
+    assert hits((1.25, -0.125), b, tri, tol)  # its end on the box's grown edge: not rejected
+    # 5. a segment across the polygon, with both ends outside every edge's band
+    assert hits((-5.0, 0.5), (5.0, 0.5), SQUARE, tol)
+    assert hits((0.5, 0.5), (0.6, 0.5), SQUARE, tol)  # inside, both ends
+
+
+@pytest.mark.parametrize(
+    ("pts", "pattern"),
+    [
+        ([[0, 0], [2, 0], [1, 0], [1, 1]], r"vertex 1 \[2.0, 0.0\] doubles back"),
+        ([[0, 0], [1, 0], [2, 0], [1, 1]], r"vertex 1 \[1.0, 0.0\] is collinear with its neighbours"),
+        (
+            [[0, 0], [2, 0], [2, 2], [1, 0.5], [0, 2]],
+            r"turns clockwise at vertex 3 \[1.0, 0.5\] but counter-clockwise at vertex 0",
+        ),
+        (
+            [[0, 0], [0, 2], [1, 0.5], [2, 2], [2, 0]],
+            r"turns counter-clockwise at vertex 2 \[1.0, 0.5\] but clockwise at vertex 0",
+        ),
+    ],
+)
+def test_rejection_says_what_is_wrong(pts, pattern):
+    """The validator's message names the vertex and the fault: a vertex that doubles back is
+    not "collinear", and a dent is named by the sense it turns against the rest of the ring."""
+    with pytest.raises(ValueError, match=pattern):
+        geo.check_convex_polygon(pts)

@@ -1,6 +1,7 @@
 """The mutation scripts of issue 15 still apply to the code (their patches and targets exist)."""
 
 import importlib.util
+import json
 import sys
 from pathlib import Path
 
@@ -37,3 +38,33 @@ def test_mutmut_targets_exist():
                 assert f"def {name}(" in (ROOT / path).read_text(), t
     config = mutation._pyproject("search")
     assert config.count("[tool.mutmut]") == 1 and 'only_mutate = ["segplan/search.py"]' in config
+
+
+def test_merge_replaces_and_adds_modules_with_their_provenance(tmp_path):
+    """``mutation.py --merge``: a later run's modules replace or join the stored ones."""
+    mutation = load("mutation")
+
+    def run(when, modules):
+        meta = {"when": when, "commit": "c" * 40, "command": f"python mutation.py {when}", "seed": 0}
+        meta |= {
+            "sample_per_module": 5,
+            "mutmut": "3.8.1",
+            "targets": {m: [f"tests/{m}.py"] for m in modules},
+        }
+        results = [{"module": m, "sample": 5, "survivors": [], "when": when} for m in modules]
+        return {"meta": meta, "results": results}
+
+    stored, later = tmp_path / "stored.json", tmp_path / "later.json"
+    stored.write_text(json.dumps(run("first", ["search", "frame"])))
+    later.write_text(json.dumps(run("later", ["frame", "frame_exact"])))
+    assert mutation.main(["--merge", str(later), "--json", str(stored)]) == 0
+    merged = json.loads(stored.read_text())
+    assert [(r["module"], r["when"]) for r in merged["results"]] == [
+        ("search", "first"), ("frame", "later"), ("frame_exact", "later"),
+    ]  # fmt: skip
+    assert "run" not in merged["results"][0] and merged["results"][2]["run"]["when"] == "later"
+    assert merged["meta"]["when"] == "first" and merged["meta"]["merged"][0]["modules"] == [
+        "frame",
+        "frame_exact",
+    ]
+    assert merged["meta"]["targets"]["frame_exact"] == ["tests/frame_exact.py"]

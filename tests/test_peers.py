@@ -147,15 +147,22 @@ def test_stored_results_round_trip(tmp_path):
         peers.read_ompl_results(tmp_path / "none.csv")
 
 
-@needs_ompl
-def test_command_line_quick_run(tmp_path):
-    """`python benchmarks/peers.py --quick` runs end to end and stores its runs."""
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    """`python benchmarks/peers.py --quick`, run once for the two tests that read it."""
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
-    out = tmp_path / "quick.csv"
+    out = tmp_path_factory.mktemp("peers") / "quick.csv"
     proc = subprocess.run(
         [sys.executable, str(ROOT / "benchmarks" / "peers.py"), "--quick", "--out", str(out)],
         capture_output=True, text=True, timeout=600, env=env, check=False,
     )  # fmt: skip
+    return proc, out
+
+
+@needs_ompl
+def test_command_line_quick_run(quick_run):
+    """`python benchmarks/peers.py --quick` runs end to end and stores its runs."""
+    proc, out = quick_run
     assert proc.returncode == 0, proc.stderr[-3000:]
     table, _, meta = peers.read_ompl_results(out)
     assert peers.missing_runs(table, peers.quick_config()) == []
@@ -164,10 +171,17 @@ def test_command_line_quick_run(tmp_path):
 
 
 @needs_ompl
-def test_ompl_smoke_run_one_scenario():
-    """One scenario, a tiny budget, one seed: the harness runs end to end, paths measured."""
+def test_ompl_smoke_run_one_scenario(quick_run):
+    """One scenario, a tiny budget, one seed: the harness runs end to end, paths measured.
+
+    OMPL's runs are those the command line's quick run stored (the same configuration,
+    ``peers.quick_config()``: not run twice); segplan's rows are computed here."""
+    proc, out = quick_run
+    assert proc.returncode == 0, proc.stderr[-3000:]
     cfg = peers.quick_config(("single_obstacle",))
-    t = pd.concat([peers.run_segplan(cfg), peers.run_ompl(cfg)[0]], ignore_index=True)
+    assert cfg == peers.quick_config()  # what the command line ran
+    ompl = peers.read_ompl_results(out)[0]
+    t = pd.concat([peers.run_segplan(cfg), ompl], ignore_index=True)
     assert set(t["method"]) == {"segplan h'=a", "segplan h'=a +refine", "RRTstar"}
     assert set(t["space"]) == {"segplan", "dubins", "reedsshepp"}
     for _, ours in t[t["space"] == "segplan"].iterrows():

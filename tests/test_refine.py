@@ -3,7 +3,7 @@
 Oracles: every refined plan passes the search's full check (dense shapely sampling of the
 swept segment, exact curvature maximum, forward motion, exact end poses, cost = Romberg's
 [1]); its cost is never above the search's; the screening filter never rejects a link
-that the exact test accepts; the Gauss-Legendre link cost agrees with scipy's quad.
+that the exact test accepts. (The Gauss-Legendre link cost is checked in test_cost_gauss.py.)
 """
 
 import math
@@ -13,13 +13,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from scipy import integrate
 from test_refine_oracles import random_links
 from test_search import check_plan
 
 import segplan
 from segplan import NoPathError, Refinement, plan_scenario, random_world, refine
-from segplan.cost import longd_gauss_intrinsic
 from segplan.frame import heuristic_alpha
 from segplan.pose import Pose
 from segplan.refine import certain_failures
@@ -153,46 +151,6 @@ def test_bad_input(plans):
 
 
 # -- the Gauss-Legendre link cost ------------------------------------------------------
-@settings(max_examples=200)
-@given(
-    d=st.floats(0.5, 20.0),
-    phi0=st.floats(-1.4, 1.4),
-    phi1=st.floats(-1.4, 1.4),
-)
-def test_gauss_cost_agrees_with_quad_within_the_steering_limit(d, phi0, phi1):
-    L = 1.0
-    lo = -math.pi / 2 - min(phi0, phi1, 0.0)
-    hi = math.pi / 2 - max(phi0, phi1, 0.0)
-    if hi - lo < 0.01:
-        return
-    alpha = heuristic_alpha(d, phi0, phi1, L)
-    u = Union(Pose(0.0, 0.0, phi0), Pose(d, 0.0, phi1), alpha, L)
-    if u.max_curvature() > 1.0 / L:  # outside the steering limit the rule is not claimed
-        return
-    X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alpha)
-
-    def speed(x):
-        fp = c1 + (2 * c2 + 3 * c3 * x) * x
-        w = 1 + fp * fp
-        return math.sqrt(w + (L * (2 * c2 + 6 * c3 * x) / w) ** 2)
-
-    ref = integrate.quad(speed, 0.0, X, epsabs=0.0, epsrel=1e-12, limit=400)[0]
-    assert longd_gauss_intrinsic(d, phi0, phi1, alpha, L) == pytest.approx(ref, rel=5e-5)
-
-
-def test_gauss_cost_is_vectorised():
-    d = np.array([2.0, 5.0, 9.0])
-    phi = np.array([0.3, -0.2, 0.0])
-    alpha = heuristic_alpha(d, phi, -phi, 1.0)
-    vec = longd_gauss_intrinsic(d, phi, -phi, alpha, 1.0)
-    one = [
-        longd_gauss_intrinsic(float(a), float(b), float(-b), float(c), 1.0)
-        for a, b, c in zip(d, phi, alpha, strict=True)
-    ]
-    assert np.allclose(vec, one, rtol=1e-14)
-    assert isinstance(one[0], float)
-
-
 # -- the screening filter is sound -------------------------------------------------------
 @settings(max_examples=60)
 @given(seed=st.integers(0, 10_000))

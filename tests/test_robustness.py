@@ -30,10 +30,18 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 # -- the floors ---------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def groups():
+    """The study's floors (rb.floor_groups(): 2 x N_FLOORS random, the hard and the large
+    ones), generated once for the tests below (about 5 s of CPU; deterministic, checked by
+    test_floors_are_deterministic_and_keyed)."""
+    return rb.floor_groups()
+
+
 @pytest.mark.parametrize("kind", fl.KINDS)
-def test_random_floors_keep_the_rules(kind):
+def test_random_floors_keep_the_rules(kind, groups):
     for i in range(0, fl.N_FLOORS, 7):
-        sc = fl.random_floor(kind, i)
+        sc = groups[kind][i]
         assert sc.name == f"{kind}-{i:03d}"
         assert sc.bounds == fl.SMALL_BOUNDS
         assert sc.robot == fl.ROBOT and sc.robot.min_turning_radius == pytest.approx(1.0)
@@ -57,8 +65,9 @@ def test_random_floors_keep_the_rules(kind):
                 assert abs(off) <= fl.NATURAL_SPREAD + 1e-6
 
 
-def test_any_headings_cover_the_circle():
-    th = np.array([fl.random_floor("any", i).start.theta for i in range(fl.N_FLOORS)])
+def test_any_headings_cover_the_circle(groups):
+    assert len(groups["any"]) == fl.N_FLOORS
+    th = np.array([sc.start.theta for sc in groups["any"]])
     assert np.histogram(th, bins=4, range=(-math.pi, math.pi))[0].min() >= 30
 
 
@@ -76,11 +85,11 @@ def test_floors_are_deterministic_and_keyed():
         fl.floor_key("any-000")
 
 
-def test_sweep_and_large_floors():
+def test_sweep_and_large_floors(groups):
     sc = fl.sweep_floor(2.0, None, 1)
     assert sc.bounds == (0.0, 0.0, 40.0, 24.0) and len(sc.obstacles) == 32
     assert sc.start.x < 0.1 * 40 + 0.3 and sc.goal.x > 0.9 * 39.4
-    large = fl.large_floor(0)
+    large = groups["large"][0]  # fl.large_floor(0)
     assert large.bounds == fl.LARGE_BOUNDS and len(large.obstacles) == 512
     assert fl.floor_key(large) == fl.floor_key(fl.sweep_floor(8.0, 512, 0))
 
@@ -108,10 +117,10 @@ def test_hard_cases_are_what_they_say():
 
 
 # -- the stored OMPL side -----------------------------------------------------------------
-def test_stored_ompl_csv_covers_every_run():
+def test_stored_ompl_csv_covers_every_run(groups):
     assert rb.OMPL_CSV.exists(), "benchmarks/results/robustness_ompl.csv missing: run robustness.py --ompl"
     t = rb.read_ompl()
-    jobs = rb.ompl_jobs(rb.floor_groups())
+    jobs = rb.ompl_jobs(groups)
     want = {rb.job_id(j): fl.floor_key(j[1]) for j in jobs}
     ids = [
         f"{f}|{p}|{b:g}|{s}"

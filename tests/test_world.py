@@ -23,7 +23,6 @@ from segplan.geometry import (
     check_convex_polygon,
     enlarge_polygon,
     enlargement_excess,
-    polygons_overlap,
     pose_segment,
     segment_hits_polygon,
 )
@@ -269,11 +268,7 @@ def test_segment_hits_polygon_agrees_with_shapely_floats(poly, x, y, th, L):
     assert segment_hits_polygon(a, b, poly) == (dist == 0.0)
 
 
-@settings(max_examples=150)  # every example reaches the assertion (was ~15 % of 300)
-@given(hull_polygons(), hull_polygons())
-def test_polygons_overlap_agrees_with_shapely(p, q):
-    p, q = check_convex_polygon(p), check_convex_polygon(q)
-    assert polygons_overlap(p, q) == Polygon(p).intersects(Polygon(q))
+# (polygons_overlap against shapely: tests/test_geometry.py)
 
 
 # -- scenarios ------------------------------------------------------------------------
