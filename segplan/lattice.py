@@ -69,14 +69,21 @@ from .cost import longd_exact_intrinsic
 from .dubins import dubins_length_scalar
 from .frame import heuristic_coefficients
 from .links import LinkModel
-from .path import NoPathError, Plan
+from .path import NoPathError, Plan, check_limits, check_option
 from .pose import Pose
 from .primitives import fine_points, heading_angles, max_reach, primitive_set
 from .union import Union
 from .validity import Workspace
 from .world import Scenario
 
-__all__ = ["GOAL_RADIUS", "lattice_search", "plan_lattice"]
+__all__ = [
+    "ENCLOSURE_AFTER",
+    "ENCLOSURE_LIMIT",
+    "GOAL_RADIUS",
+    "LATTICE_MAX_EXPANSIONS",
+    "lattice_search",
+    "plan_lattice",
+]
 
 _ANGLES = heading_angles()
 
@@ -96,7 +103,11 @@ class _LatticeSearch(GoalApproaches):
         self.weight, self.every, self.goal_radius = weight, analytic_every, goal_radius
         self.banned = banned
         self.approach_after, self.approach_tries, self.approach_limit = 32, 2, 60
-        self.approach_budget = math.pi * self.R + 2.0 * self.L
+        self.approach_budget = math.inf  # the nearest approach_limit states (all, if fewer)
+        # the goal's enclosure test: the approach tree grown to this many states (more on a
+        # finer lattice) after ENCLOSURE_AFTER expansions without a plan, or at once (eager)
+        self.enclosure_limit = int(round(ENCLOSURE_LIMIT * (0.125 * self.L / r) ** 2))
+        self.eager = False
         ps = primitive_set(robot.L, robot.max_steer, r)
         self.prims = ps.by_heading
         th = self.start.theta
@@ -166,6 +177,29 @@ class _LatticeSearch(GoalApproaches):
         self.goal_g, self.goal_parent = g + c, (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
+    def enclosed(self, expanded: int) -> bool:
+        """Grow the goal's approach tree when due; True if the goal is proven out of reach.
+
+        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions
+        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER` (at the first
+        expansion if ``eager``). If it runs out of states first, it holds every state of
+        the goal's lattice that reaches the goal; if no union joins the start to any of
+        them (:meth:`start_joins`), no plan exists at this resolution (on the goal's lattice).
+        """
+        if self.approach_keys is None and (self.eager or expanded >= self.approach_after):
+            limit = self.enclosure_limit if self.eager else self.approach_limit
+            self.build_approaches(self.approach_budget, limit)
+        elif (
+            self.approach_keys is not None
+            and not self.approach_exhausted
+            and expanded >= ENCLOSURE_AFTER
+            and len(self.approach_keys) < self.enclosure_limit
+        ):
+            self.grow_approaches(self.enclosure_limit)
+        else:
+            return False
+        return self.approach_exhausted and not self.start_joins()
+
     def run(self, max_expansions: int, deadline: float):
         start = (0, 0, 0)
         self.g = {start: 0.0}
@@ -206,8 +240,8 @@ class _LatticeSearch(GoalApproaches):
             if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
                 P = self.pose(key)
                 self.try_goal(key, P, g)
-            if self.approach_keys is None and expanded >= self.approach_after and self.goal_parent is None:
-                self.build_approaches(self.approach_budget, self.approach_limit)
+            if self.goal_parent is None and self.enclosed(expanded):
+                return ("enclosed", expanded)
             if self.approach_keys and hd <= self.goal_radius:
                 P = P or self.pose(key)
                 self.try_approaches(key, P, g, x, y, _ANGLES[h], self.approach_tries)
@@ -288,6 +322,12 @@ class _LatticeSearch(GoalApproaches):
         )
 
 
+#: Expansions without a plan after which the goal's enclosure test runs (see
+#: :meth:`_LatticeSearch.enclosed`), and the approach states it grows to (at ``L / 8``; times
+#: 4 per halving of the resolution).
+ENCLOSURE_AFTER = 256
+ENCLOSURE_LIMIT = 300
+
 #: Nodes ahead that :func:`_shortcut` tries to reach by one union.
 SHORTCUT_WINDOW = 16
 
@@ -338,6 +378,9 @@ def _shortcut(plan, ex, grid, t0):
         seconds=time.perf_counter() - t0,
     )  # fmt: skip
 
+
+#: Default ``max_expansions`` of the lattice search.
+LATTICE_MAX_EXPANSIONS = 200_000
 
 #: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
 GOAL_RADIUS = (2.0, 1.0)
@@ -403,26 +446,12 @@ def _direct_plan(ws, start, u, t0):
     )
 
 
-def _check(value, name, lo, integer=False, allow_none=False):
-    if value is None and allow_none:
-        return None
-    ok = (
-        not isinstance(value, bool) and isinstance(value, int | float) and math.isfinite(value) and value > lo
-    )
-    if ok and integer:
-        ok = int(value) == value
-    if not ok:
-        kind = "an integer" if integer else "a finite number"
-        raise ValueError(f"{name} must be {kind} > {lo}, got {value!r}")
-    return int(value) if integer else float(value)
-
-
 def plan_lattice(
     scenario,
     *,
     resolution: float | None = None,
     weight: float = 2.0,
-    max_expansions: int = 200_000,
+    max_expansions: int | None = None,
     time_limit: float = 10.0,
     retry: bool = True,
     analytic_every: int = 8,
@@ -439,7 +468,8 @@ def plan_lattice(
     weight : float
         Factor on the admissible ``h'`` (>= 1; 1: the cheapest plan over the lattice).
     max_expansions, time_limit : int, float
-        Limits (NoPathError with ``reason="expansions"`` or ``"time"``).
+        Limits (NoPathError with ``reason="expansions"`` or ``"time"``); ``max_expansions``
+        None: :data:`LATTICE_MAX_EXPANSIONS`.
     retry : bool
         After an exhausted lattice, search once more at half the cell size.
     analytic_every : int
@@ -484,7 +514,7 @@ def lattice_search(
     *,
     resolution=None,
     weight=2.0,
-    max_expansions=200_000,
+    max_expansions=None,
     time_limit=10.0,
     retry=True,
     analytic_every=8,
@@ -498,17 +528,16 @@ def lattice_search(
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
-    resolution = _check(resolution, "resolution", 0.0, allow_none=True)
+    resolution = check_option(resolution, "resolution", 0.0, allow_none=True)
     if resolution is not None and resolution > L:
         raise ValueError(f"resolution must be at most L={L}, got {resolution!r}")
-    weight = _check(weight, "weight", 0.0)
-    if weight < 1.0:
-        raise ValueError(f"weight must be >= 1 (1: the admissible h'), got {weight!r}")
-    max_expansions = _check(max_expansions, "max_expansions", 0, integer=True)
-    time_limit = _check(time_limit, "time_limit", 0.0)
-    analytic_every = _check(analytic_every, "analytic_every", 0, integer=True)
-    goal_radius = _check(goal_radius, "goal_radius", 0.0, allow_none=True)
-    cell = _check(cell, "cell", 0.0, allow_none=True)
+    weight = check_option(weight, "weight", 1.0, lo_ok=True)  # 1: the admissible h'
+    max_expansions, time_limit = check_limits(max_expansions, time_limit)
+    if max_expansions is None:
+        max_expansions = LATTICE_MAX_EXPANSIONS
+    analytic_every = check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True)
+    goal_radius = check_option(goal_radius, "goal_radius", 0.0, allow_none=True)
+    cell = check_option(cell, "cell", 0.0, allow_none=True)
     if not isinstance(retry, bool):
         raise ValueError(f"retry must be True or False, got {retry!r}")
     res = resolution or 0.125 * L
@@ -541,6 +570,7 @@ def lattice_search(
     la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
     banned: set = set()
     expanded_total = 0
+    proofs: list = []  # (resolution, "exhausted" or "enclosed", approach states) per try
     for k, r in enumerate(tries):
         search = _LatticeSearch(
             scenario,
@@ -565,6 +595,7 @@ def lattice_search(
                 1,
                 best,
             )
+        search.eager = bool(proofs) and proofs[-1][1] == "enclosed"
         while True:
             outcome, expanded = search.run(max_expansions - expanded_total, deadline)
             if outcome != "found":
@@ -580,14 +611,24 @@ def lattice_search(
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
         expanded_total += expanded
-        if outcome != "exhausted" or k == len(tries) - 1:
+        proofs.append((r, outcome, len(search.approach_keys or ())))
+        if outcome not in ("exhausted", "enclosed") or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
-            what = {
-                "exhausted": "every reachable lattice state was expanded at resolution "
-                + " and ".join(f"{t:.4g} m" for t in tries[: k + 1]),
-                "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
-                "time": f"the time limit time_limit={time_limit:g} s was reached",
-            }[outcome]
+            if outcome in ("exhausted", "enclosed"):
+                what = "; ".join(
+                    f"at resolution {t:.4g} m, every reachable lattice state was expanded"
+                    if o == "exhausted"
+                    else f"at resolution {t:.4g} m, only {n} states of the lattice laid out in the "
+                    "goal's frame reach the goal by primitives, and no union from the start reaches "
+                    "one of them (the goal is enclosed)"
+                    for t, o, n in proofs
+                )
+                outcome = "exhausted"
+            else:
+                what = {
+                    "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
+                    "time": f"the time limit time_limit={time_limit:g} s was reached",
+                }[outcome]
             fail(
                 outcome,
                 f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded_total} states",
