@@ -30,7 +30,6 @@ from .lattice import LATTICE_MAX_EXPANSIONS, lattice_search
 from .links import LinkModel
 from .path import NoPathError, Plan, check_limits, check_option
 from .problem import COSTS, HEURISTICS, Problem, characteristic_dimension
-from .refine import refine as refine_plan
 from .refine import refine_with
 from .search import astar
 from .validity import Workspace
@@ -253,14 +252,20 @@ def plan_scenario(
     t_start = time.perf_counter()
     # the paper's search first (fast where it succeeds), then the lattice; the shorter
     # plan found is refined
-    paper = None
+    paper = paper_links = None
+    # one validity checker of the floor for both searches (built once: on a large floor
+    # its set-up is a large share of the planning time)
+    robot = scenario.robot
+    ws = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
     try:
-        paper = _plan(
+        paper, paper_links = _plan(
             scenario,
             heuristic,
             max_expansions=3000 if max_expansions is None else max_expansions,
             time_limit=PAPER_SHARE * float(time_limit),
             refine=False,
+            with_links=True,
+            workspace=ws,
             **paper_options,
         )
     except NoPathError:
@@ -276,27 +281,27 @@ def plan_scenario(
         bound = dubins_length_scalar(s.x, s.y, s.theta, g.x, g.y, g.theta, scenario.robot.min_turning_radius)
         if paper.cost <= NEAR_LOWER_BOUND * bound:
             lattice_expansions = 0
-    found, links = paper, None  # a plan off the lattice (or beyond the lattice's limits)
+    found, links = paper, paper_links  # a plan off the lattice (or beyond the lattice's limits)
     if lattice_expansions > 0:
         try:
             found, links = lattice_search(
                 scenario,
                 max_expansions=lattice_expansions,
                 time_limit=max(left, 1e-3),
+                workspace=ws,
                 **(lattice or {}),
             )
         except NoPathError:
             if paper is None:
                 raise
     if paper is not None and paper.cost < found.cost:
-        found, links = paper, None
+        found, links = paper, paper_links
     found = dataclasses.replace(found, seconds=time.perf_counter() - t_start)
     if refine is False:
         return found
-    options = {} if refine is True else refine
-    if links is None:  # the paper's plan: the refinement's own validity checker and link model
-        return refine_plan(found, scenario, **options)
-    return refine_with(found, links, **options)
+    # the refinement reuses the link model (validity checker, unions and costs) of the
+    # search whose plan it refines
+    return refine_with(found, links, **({} if refine is True else refine))
 
 
 def plan_scenario_observed(scenario: Scenario, observer, heuristic: str = "a", **options) -> Plan:
@@ -325,7 +330,9 @@ def _plan(
     expander=None,
     refine=False,
     observer=None,
-) -> Plan:
+    with_links=False,
+    workspace=None,
+) -> Plan | tuple[Plan, LinkModel]:
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     _check_choice(heuristic, HEURISTICS, "heuristic")
@@ -350,7 +357,7 @@ def _plan(
     if alpha_method == "heuristic":
         heuristic_coefficients()
     t0 = time.perf_counter()
-    ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
+    ws = workspace or Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     options = dict(expander or {})
     links = LinkModel(ws, alpha_method, options.get("steer_fallback", True), observer)
     ex = Expander(ws, version=version, alpha_method=alpha_method, links=links, **options)
@@ -394,6 +401,8 @@ def _plan(
         t0=t0,
         max_turn_chain=max_turn_chain,
     )
+    if with_links:  # the default planner's use: the plan and its link model, unrefined
+        return found, links
     if refine is False:
         return found
     return refine_with(found, links, **({} if refine is True else refine))

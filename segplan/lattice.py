@@ -521,8 +521,13 @@ def lattice_search(
     goal_radius=None,
     cell=None,
     t0=None,
+    workspace=None,
 ):
-    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used."""
+    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used.
+
+    ``workspace``: a :class:`segplan.validity.Workspace` of this scenario to reuse (the
+    default planner passes the paper's search's; its counters then add up).
+    """
 
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
@@ -550,7 +555,7 @@ def lattice_search(
     heuristic_coefficients()
     t0 = time.perf_counter() if t0 is None else t0
     deadline = t0 + time_limit
-    ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
+    ws = workspace or Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     ex = LinkModel(ws)
     start, goal = scenario.start, scenario.goal
     # the paper's direct union first: where it is free, it is the plan (no grid to build)
