@@ -1,0 +1,81 @@
+"""The lattice planner: fast "no plan" for an enclosed goal, the approach screen, one option validator."""
+
+import math
+
+import numpy as np
+import pytest
+
+from segplan import NoPathError, Robot, make_scenario, plan_scenario
+from segplan import lattice as lt
+from segplan.approach import steerable
+from segplan.path import check_limits, check_option
+
+DEG = math.pi / 180.0
+
+
+def _wall_goal():
+    """Open 20 x 12 m room; the goal 0.56 m from the left wall (beyond the robot's half-width),
+    heading into the room: it can only be reached by arriving from inside the wall."""
+    robot = Robot(1.0, 0.3, 45 * DEG)
+    return make_scenario(robot, (15.0, 6.0, math.pi), (0.86, 1.52, 0.09), [], (0.0, 0.0, 20.0, 12.0))
+
+
+def test_enclosed_goal_is_proven_fast():
+    sc = _wall_goal()
+    with pytest.raises(NoPathError) as err:
+        lt.lattice_search(sc)
+    e = err.value
+    assert e.reason == "exhausted"
+    assert "enclosed" in str(e) and "0.125 m" in str(e) and "0.0625 m" in str(e)
+    assert e.expanded <= lt.ENCLOSURE_AFTER + 1  # well before the lattice runs out
+    assert e.best is not None and e.best.nodes[0] == sc.start
+
+
+def test_enclosure_proof_agrees_with_the_forward_search(monkeypatch):
+    """Without the enclosure test, the forward search finds no plan either (it runs to its limit)."""
+    monkeypatch.setattr(lt._LatticeSearch, "enclosed", lambda self, expanded: False)
+    with pytest.raises(NoPathError) as err:
+        lt.lattice_search(_wall_goal(), max_expansions=1500, retry=False)
+    assert err.value.reason in ("expansions", "exhausted")
+
+
+def test_default_planner_reports_the_enclosed_goal():
+    with pytest.raises(NoPathError) as err:
+        plan_scenario(_wall_goal())
+    assert err.value.reason == "exhausted"
+
+
+def test_reachable_goal_near_a_wall_is_still_planned():
+    """The same goal turned to face the wall is reachable: no enclosure is claimed."""
+    robot = Robot(1.0, 0.3, 45 * DEG)
+    sc = make_scenario(robot, (15.0, 6.0, math.pi), (1.5, 1.52, math.pi), [], (0.0, 0.0, 20.0, 12.0))
+    plan = plan_scenario(sc)
+    assert plan.nodes[-1] == sc.goal
+
+
+def test_steerable_screens_unions():
+    p0 = (0.0, 0.0, 0.0)
+    ahead = np.array([(3.0, 0.5, 0.2), (3.0, -0.5, -0.2)])
+    behind = np.array([(-3.0, 0.0, 0.0), (0.0, 0.2, math.pi)])
+    assert steerable(p0, ahead, 1.0).all()
+    assert not steerable(p0, behind, 1.0).any()
+    tight = np.array([(0.3, 0.3, 1.5)])  # a quarter turn within 0.3 m: far beyond curvature 1
+    assert not steerable(p0, tight, 1.0).any()
+
+
+@pytest.mark.parametrize(
+    "value, kwargs",
+    [(True, {}), (float("nan"), {}), (0.0, {}), (-1.0, {"lo_ok": True}), (1.5, {"integer": True}), ("1", {})],
+)
+def test_check_option_names_the_argument(value, kwargs):
+    with pytest.raises(ValueError, match="my_option"):
+        check_option(value, "my_option", 0.0, **kwargs)
+
+
+def test_check_limits():
+    assert check_limits(None, 2) == (None, 2.0)
+    assert check_limits(5.0, 0.5) == (5, 0.5)
+    with pytest.raises(ValueError, match="max_expansions"):
+        check_limits(0, 1.0)
+    with pytest.raises(ValueError, match="time_limit"):
+        check_limits(10, float("inf"))
