@@ -71,7 +71,7 @@ def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float = 1.1) -> n
 class GoalApproaches:
     """Mixin of the lattice search (:mod:`segplan.lattice`): the goal's approach tree.
 
-    Uses the search's ``prims``, ``r``, ``L``, ``R``, ``start``, ``goal``, ``grid``,
+    Uses the search's ``prims``, ``fine``, ``r``, ``L``, ``R``, ``start``, ``goal``, ``grid``,
     ``ex``, ``ws``, ``heap``, ``goal_g``, ``goal_parent`` and :meth:`certified`.
     """
 
@@ -151,9 +151,12 @@ class GoalApproaches:
                 if bad[k] or prev in done or nc > budget or not nc < cost.get(prev, math.inf):
                     continue
                 if not free[k]:
+                    # the primitive's finer points (as the forward search uses): a tighter
+                    # screen, so fewer certified tests
+                    fp, fd = self.fine[h0]
                     u = self.approach_union(prev, key, h0, m)
-                    world = (pts_in[h][k] + base[k]) @ grid.rot.T + (self.start.x, self.start.y)
-                    if not self.certified(u, world, dl_in[h][k]):
+                    world = (fp[m] @ rot.T + base[k]) @ grid.rot.T + (self.start.x, self.start.y)
+                    if not self.certified(u, world, fd[m] + 1e-9):
                         continue
                 cost[prev], nxt[prev] = nc, (key, h0, m)
                 heapq.heappush(heap, (nc, prev))
