@@ -49,6 +49,14 @@ shape of Hybrid A* (Dolgov et al. 2008):
   tries once more at half the cell size. Before searching, the grid's free cells
   (8-connected) must join the start's rear point to the goal's: if they do not, no path
   exists at all and the error comes at once (an enclosed goal).
+* **An enclosed goal, fast**: the goal's approach tree is a backward search over the
+  lattice laid out in the goal's frame. After :data:`ENCLOSURE_AFTER` expansions without
+  a plan it is grown to :data:`ENCLOSURE_LIMIT` states (4 times as many at half the
+  cell); if it runs out of states first, it holds every state of that lattice from which
+  the goal can be reached, and if no free union joins the start to one of them, no plan
+  exists on that lattice: the backward counterpart of an exhausted search, reported as
+  ``reason="exhausted"`` naming the resolution (the retry then tests at once). A goal a
+  few decimetres in front of a wall, facing away from it, is such a case.
 
 :func:`plan_lattice` returns a :class:`segplan.search.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines
