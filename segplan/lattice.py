@@ -68,6 +68,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
+import weakref
 
 import numpy as np
 
@@ -96,6 +97,30 @@ __all__ = [
 _ANGLES = heading_angles()
 
 
+_TABLES: dict = {}  # (id of a live primitive set, cell) -> its per-heading tables
+
+
+def _tables(ps, cell: float):
+    """Per heading: the primitives' points, their cells ``(i, j)`` relative to the start's
+    cell (grid cell ``cell``), covering radii, steps ``(di, dj, h1)`` and costs. Computed
+    once per primitive set and cell (kept while the set lives)."""
+    key = (id(ps), float(cell))
+    out = _TABLES.get(key)
+    if out is None:
+        points, cells, delta, step, cost = [], [], [], [], []
+        for prims in ps.by_heading:
+            pts = np.stack([p.points for p in prims])
+            points.append(pts)
+            cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
+            delta.append(np.array([p.delta for p in prims]) + 1e-9)
+            step.append([(p.di, p.dj, p.h1) for p in prims])
+            cost.append([p.cost for p in prims])
+        out = (points, cells, delta, step, cost)
+        _TABLES[key] = out
+        weakref.finalize(ps, _TABLES.pop, key, None)
+    return out
+
+
 class _LatticeSearch(GoalApproaches):
     """A* over the lattice laid out in the start's frame (module docstring)."""
 
@@ -122,15 +147,9 @@ class _LatticeSearch(GoalApproaches):
         self.c, self.s = math.cos(th), math.sin(th)
         gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
         self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
-        self.offsets, self.delta, self.step, self.cost, self.points = [], [], [], [], []
         self.fine = fine_points(ps)  # finer points for primitives close to obstacles
-        for prims in ps.by_heading:
-            pts = np.stack([p.points for p in prims])
-            self.points.append(pts)
-            self.offsets.append(grid.offsets(pts))
-            self.delta.append(np.array([p.delta for p in prims]) + 1e-9)
-            self.step.append([(p.di, p.dj, p.h1) for p in prims])
-            self.cost.append([p.cost for p in prims])
+        self.points, cells, self.delta, self.step, self.cost = _tables(ps, grid.cell)
+        self.offsets = [i * grid.ny + j for i, j in cells]  # flat-index offsets in this grid
 
     def pose(self, key):
         """World pose of a lattice state."""
