@@ -94,11 +94,11 @@ class ClearanceGrid:
         occ = np.zeros((self.nx, self.ny), dtype=bool)
         blocked = np.zeros_like(occ)
         if self.walls:
-            wx = sx + c * cx[:, None] - s * cy[None, :]
-            wy = sy + s * cx[:, None] + c * cy[None, :]
-            wall = np.minimum(np.minimum(wx - xmin, xmax - wx), np.minimum(wy - ymin, ymax - wy))
-            occ |= wall <= h
-            blocked |= wall < -h
+            # per row of cells, the centres inside the walls by more than h (occupied: the
+            # others) and by more than -h (blocked: the others) form an interval of cy; the
+            # margins 1e-9 keep both conservative against rounding
+            occ |= ~self._inside_walls(cx, cy, bounds, h + 1e-9)
+            blocked |= ~self._inside_walls(cx, cy, bounds, -h - 1e-9)
         for v in polys:
             poly = ConvexPolygon(v, check=False)
             a = np.floor((v.min(axis=0) - 2 * h) / g).astype(int) - (self.i0, self.j0)
@@ -127,6 +127,29 @@ class ClearanceGrid:
         lower[occ] = -1.0
         self.lower, self.blocked = lower, blocked
         self.lower_flat, self.blocked_flat = lower.ravel(), blocked.ravel()
+
+    def _inside_walls(self, cx, cy, bounds, d: float) -> np.ndarray:
+        """Cells whose centre lies more than ``d`` inside every wall (lattice-frame centres
+        ``cx`` by row, ``cy`` by column): per row an interval of ``cy``."""
+        sx, sy, th = self.frame
+        c, s = math.cos(th), math.sin(th)
+        xmin, ymin, xmax, ymax = bounds
+        lo = np.full(cx.shape, -np.inf)
+        hi = np.full(cx.shape, np.inf)
+        # the walls' distances a + b cy, with a depending on the row
+        for a, b in (
+            (sx - xmin + c * cx, -s),
+            (xmax - sx - c * cx, s),
+            (sy - ymin + s * cx, c),
+            (ymax - sy - s * cx, -c),
+        ):
+            if b > 0.0:
+                lo = np.maximum(lo, (d - a) / b)
+            elif b < 0.0:
+                hi = np.minimum(hi, (d - a) / b)
+            else:
+                hi = np.where(a > d, hi, -np.inf)
+        return (cy[None, :] > lo[:, None]) & (cy[None, :] < hi[:, None])
 
     def to_lattice(self, pts: np.ndarray) -> np.ndarray:
         """World points ``(..., 2)`` in the lattice frame."""
