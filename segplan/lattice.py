@@ -49,14 +49,15 @@ shape of Hybrid A* (Dolgov et al. 2008):
   tries once more at half the cell size. Before searching, the grid's free cells
   (8-connected) must join the start's rear point to the goal's: if they do not, no path
   exists at all and the error comes at once (an enclosed goal).
-* **An enclosed goal, fast**: the goal's approach tree is a backward search over the
+* **A goal that looks enclosed**: the goal's approach tree is a backward search over the
   lattice laid out in the goal's frame. After :data:`ENCLOSURE_AFTER` expansions without
   a plan it is grown to :data:`ENCLOSURE_LIMIT` states (4 times as many at half the
-  cell); if it runs out of states first, it holds every state of that lattice from which
-  the goal can be reached, and if no free union joins the start to one of them, no plan
-  exists on that lattice: the backward counterpart of an exhausted search, reported as
-  ``reason="exhausted"`` naming the resolution (the retry then tests at once). A goal a
-  few decimetres in front of a wall, facing away from it, is such a case.
+  cell); if it runs out of states first and no free union joins the start to one of
+  them, the goal can be reached neither by that lattice's primitives nor by a union
+  from the start. A union from a state of the start's lattice might still reach it, so
+  this is no proof: the search goes on for :data:`ENCLOSED_EXPANSIONS` expansions, then
+  stops with ``reason="expansions"`` and says why. A goal a few decimetres in front of a
+  wall, facing away from it, looks so (and is).
 
 :func:`plan_lattice` returns a :class:`segplan.search.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines
@@ -86,6 +87,7 @@ from .validity import Workspace
 from .world import Scenario
 
 __all__ = [
+    "ENCLOSED_EXPANSIONS",
     "ENCLOSURE_AFTER",
     "ENCLOSURE_LIMIT",
     "GOAL_RADIUS",
@@ -138,9 +140,8 @@ class _LatticeSearch(GoalApproaches):
         self.approach_after, self.approach_tries, self.approach_limit = 32, 2, 60
         self.approach_budget = math.inf  # the nearest approach_limit states (all, if fewer)
         # the goal's enclosure test: the approach tree grown to this many states (more on a
-        # finer lattice) after ENCLOSURE_AFTER expansions without a plan, or at once (eager)
+        # finer lattice) after ENCLOSURE_AFTER expansions without a plan
         self.enclosure_limit = int(round(ENCLOSURE_LIMIT * (0.125 * self.L / r) ** 2))
-        self.eager = False
         ps = primitive_set(robot.L, robot.max_steer, r)
         self.prims = ps.by_heading
         th = self.start.theta
@@ -205,17 +206,18 @@ class _LatticeSearch(GoalApproaches):
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
     def enclosed(self, expanded: int) -> bool:
-        """Grow the goal's approach tree when due; True if the goal is proven out of reach.
+        """Grow the goal's approach tree when due; True if the goal looks enclosed.
 
         The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions
-        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER` (at the first
-        expansion if ``eager``). If it runs out of states first, it holds every state of
-        the goal's lattice that reaches the goal; if no union joins the start to any of
-        them (:meth:`start_joins`), no plan exists at this resolution (on the goal's lattice).
+        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER`. If it runs
+        out of states first, it holds every state of the goal's lattice that reaches the
+        goal by primitives; if no union joins the start to any of them
+        (:meth:`start_joins`), no plan made of a union and such primitives exists. A union
+        from a state of the start's lattice may still reach the goal (not a proof): the
+        search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
         """
-        if self.approach_keys is None and (self.eager or expanded >= self.approach_after):
-            limit = self.enclosure_limit if self.eager else self.approach_limit
-            self.build_approaches(self.approach_budget, limit)
+        if self.approach_keys is None and expanded >= self.approach_after:
+            self.build_approaches(self.approach_budget, self.approach_limit)
         elif (
             self.approach_keys is not None
             and not self.approach_exhausted
@@ -243,10 +245,13 @@ class _LatticeSearch(GoalApproaches):
         reason = "exhausted"
         heap, r, q, grid = self.heap, self.r, self.q, self.grid
         lower, blocked = grid.lower_flat, grid.blocked_flat
+        stop_at = math.inf  # set when the goal looks enclosed
         while heap:
             if expanded >= max_expansions:
                 reason = "expansions"
                 break
+            if expanded >= stop_at:
+                return ("enclosed", expanded)
             if expanded % 64 == 0 and time.perf_counter() > deadline:
                 reason = "time"
                 break
@@ -267,8 +272,8 @@ class _LatticeSearch(GoalApproaches):
             if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
                 P = self.pose(key)
                 self.try_goal(key, P, g)
-            if self.goal_parent is None and self.enclosed(expanded):
-                return ("enclosed", expanded)
+            if self.goal_parent is None and stop_at == math.inf and self.enclosed(expanded):
+                stop_at = expanded + ENCLOSED_EXPANSIONS
             if self.approach_keys and hd <= self.goal_radius:
                 P = P or self.pose(key)
                 self.try_approaches(key, P, g, x, y, _ANGLES[h], self.approach_tries)
@@ -354,6 +359,9 @@ class _LatticeSearch(GoalApproaches):
 #: 4 per halving of the resolution).
 ENCLOSURE_AFTER = 256
 ENCLOSURE_LIMIT = 300
+#: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
+#: the start's lattice may still reach it: not a proof), before it stops.
+ENCLOSED_EXPANSIONS = 512
 
 #: Nodes ahead that :func:`_shortcut` tries to reach by one union.
 SHORTCUT_WINDOW = 16
@@ -627,7 +635,6 @@ def lattice_search(
                 1,
                 best,
             )
-        search.eager = bool(proofs) and proofs[-1][1] == "enclosed"
         while True:
             outcome, expanded = search.run(max_expansions - expanded_total, deadline)
             if outcome != "found":
@@ -644,18 +651,20 @@ def lattice_search(
             expanded_total += expanded
         expanded_total += expanded
         proofs.append((r, outcome, len(search.approach_keys or ())))
-        if outcome not in ("exhausted", "enclosed") or k == len(tries) - 1:
+        if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
-            if outcome in ("exhausted", "enclosed"):
-                what = "; ".join(
-                    f"at resolution {t:.4g} m, every reachable lattice state was expanded"
-                    if o == "exhausted"
-                    else f"at resolution {t:.4g} m, only {n} states of the lattice laid out in the "
-                    "goal's frame reach the goal by primitives, and no union from the start reaches "
-                    "one of them (the goal is enclosed)"
-                    for t, o, n in proofs
+            if outcome == "exhausted":
+                what = "every reachable lattice state was expanded at resolution " + " and ".join(
+                    f"{t:.4g} m" for t, _, _ in proofs
                 )
-                outcome = "exhausted"
+            elif outcome == "enclosed":
+                what = (
+                    f"the goal looks enclosed: only {proofs[-1][2]} states of the lattice laid out "
+                    f"in the goal's frame (resolution {r:.4g} m) reach it by primitives and no union "
+                    f"from the start reaches one of them; the search stopped {ENCLOSED_EXPANSIONS} "
+                    "expansions later (a limit, not a proof)"
+                )
+                outcome = "expansions"
             else:
                 what = {
                     "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
