@@ -23,13 +23,13 @@ import time
 import weakref
 
 from .cost import checked_intrinsic, longd_exact_intrinsic
+from .dubins import dubins_length_scalar
 from .expansion import Expander
 from .frame import heuristic_coefficients
-from .lattice import lattice_search
+from .lattice import LATTICE_MAX_EXPANSIONS, lattice_search
 from .links import LinkModel
-from .path import NoPathError, Plan
+from .path import NoPathError, Plan, check_limits, check_option
 from .problem import COSTS, HEURISTICS, Problem, characteristic_dimension
-from .refine import refine as refine_plan
 from .refine import refine_with
 from .search import astar
 from .validity import Workspace
@@ -37,6 +37,7 @@ from .world import Robot, Scenario, make_scenario, with_clearance
 
 __all__ = [
     "LATTICE_AFTER_PAPER",
+    "NEAR_LOWER_BOUND",
     "PAPER_SHARE",
     "PLANNERS",
     "plan",
@@ -120,6 +121,10 @@ PAPER_SHARE = 0.2
 #: Expansions the lattice may spend looking for a shorter plan once the paper's search has
 #: found one (a count, not a time share: the plan returned does not depend on the machine).
 LATTICE_AFTER_PAPER = 2000
+#: The default planner skips the lattice when the paper's plan costs at most this factor
+#: times a lower bound of any plan's LONGD (the Dubins length of the rear point,
+#: :func:`segplan.dubins.dubins_length`): the lattice could shorten it by this little at most.
+NEAR_LOWER_BOUND = 1.05
 
 
 def plan_scenario(
@@ -153,8 +158,9 @@ def plan_scenario(
         ``"lattice"`` (default, beyond the paper): the paper's search first, within
         :data:`PAPER_SHARE` of ``time_limit``, then the A* over a lattice of cubic-union
         primitives (:func:`segplan.lattice.lattice_search`; at most
-        :data:`LATTICE_AFTER_PAPER` expansions when the paper's search found a plan, else
-        up to ``max_expansions`` and the rest of ``time_limit``); the shorter plan found is
+        :data:`LATTICE_AFTER_PAPER` expansions when the paper's search found a plan, none
+        if that plan is within :data:`NEAR_LOWER_BOUND` of a lower bound, else up to
+        ``max_expansions`` and the rest of ``time_limit``); the shorter plan found is
         refined. ``"paper"``: the paper's search alone, exactly as the paper describes it
         (the book's reproduction chapters call it so).
     refine : bool or dict, optional
@@ -213,14 +219,8 @@ def plan_scenario(
         refine = planner == "lattice"
     if not (isinstance(refine, bool) or isinstance(refine, dict)):
         raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
-    if (
-        isinstance(clearance, bool)
-        or not isinstance(clearance, int | float)
-        or not (math.isfinite(clearance) and clearance >= 0)
-    ):
-        raise ValueError(f"clearance must be a finite number of metres >= 0, got {clearance!r}")
-    if not (isinstance(time_limit, int | float) and math.isfinite(time_limit) and time_limit > 0):
-        raise ValueError(f"time_limit must be a positive number of seconds, got {time_limit!r}")
+    clearance = check_option(clearance, "clearance (m)", 0.0, lo_ok=True)
+    max_expansions, time_limit = check_limits(max_expansions, time_limit)
     if clearance > 0:
         scenario = with_clearance(scenario, clearance)
     paper_options = dict(
@@ -243,44 +243,56 @@ def plan_scenario(
     t_start = time.perf_counter()
     # the paper's search first (fast where it succeeds), then the lattice; the shorter
     # plan found is refined
-    paper = None
+    paper = paper_links = None
+    # one validity checker of the floor for both searches (built once: on a large floor
+    # its set-up is a large share of the planning time)
+    robot = scenario.robot
+    ws = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
     try:
-        paper = _plan(
+        paper, paper_links = _plan(
             scenario,
             heuristic,
             max_expansions=3000 if max_expansions is None else max_expansions,
             time_limit=PAPER_SHARE * float(time_limit),
             refine=False,
+            with_links=True,
+            workspace=ws,
             **paper_options,
         )
     except NoPathError:
         pass
     left = float(time_limit) - (time.perf_counter() - t_start)
-    lattice_expansions = 200_000 if max_expansions is None else int(max_expansions)
+    lattice_expansions = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
     if paper is not None:
         # a plan exists: the lattice looks for a shorter one within a bounded number of
-        # expansions (not a wall-clock share, so the answer does not depend on the machine)
+        # expansions (not a wall-clock share, so the answer does not depend on the machine),
+        # unless the plan is already within NEAR_LOWER_BOUND of a lower bound
         lattice_expansions = min(lattice_expansions, LATTICE_AFTER_PAPER)
-    try:
-        found, links = lattice_search(
-            scenario,
-            max_expansions=lattice_expansions,
-            time_limit=max(left, 1e-3),
-            **(lattice or {}),
-        )
-    except NoPathError:
-        if paper is None:
-            raise
-        found, links = paper, None  # a plan off the lattice (or beyond the lattice's limits)
+        s, g = scenario.start, scenario.goal
+        bound = dubins_length_scalar(s.x, s.y, s.theta, g.x, g.y, g.theta, scenario.robot.min_turning_radius)
+        if paper.cost <= NEAR_LOWER_BOUND * bound:
+            lattice_expansions = 0
+    found, links = paper, paper_links  # a plan off the lattice (or beyond the lattice's limits)
+    if lattice_expansions > 0:
+        try:
+            found, links = lattice_search(
+                scenario,
+                max_expansions=lattice_expansions,
+                time_limit=max(left, 1e-3),
+                workspace=ws,
+                **(lattice or {}),
+            )
+        except NoPathError:
+            if paper is None:
+                raise
     if paper is not None and paper.cost < found.cost:
-        found, links = paper, None
+        found, links = paper, paper_links
     found = dataclasses.replace(found, seconds=time.perf_counter() - t_start)
     if refine is False:
         return found
-    options = {} if refine is True else refine
-    if links is None:  # the paper's plan: the refinement's own validity checker and link model
-        return refine_plan(found, scenario, **options)
-    return refine_with(found, links, **options)
+    # the refinement reuses the link model (validity checker, unions and costs) of the
+    # search whose plan it refines
+    return refine_with(found, links, **({} if refine is True else refine))
 
 
 def plan_scenario_observed(scenario: Scenario, observer, heuristic: str = "a", **options) -> Plan:
@@ -309,19 +321,19 @@ def _plan(
     expander=None,
     refine=False,
     observer=None,
-) -> Plan:
+    with_links=False,
+    workspace=None,
+) -> Plan | tuple[Plan, LinkModel]:
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     _check_choice(heuristic, HEURISTICS, "heuristic")
     _check_choice(cost, COSTS, "cost")
     if not (isinstance(refine, bool) or isinstance(refine, dict)):
         raise ValueError(f"refine must be True, False or a dict of refine() options, got {refine!r}")
-    if isinstance(max_expansions, bool) or int(max_expansions) != max_expansions or max_expansions < 1:
-        raise ValueError(f"max_expansions must be an integer >= 1, got {max_expansions!r}")
-    if isinstance(max_turn_chain, bool) or int(max_turn_chain) != max_turn_chain or max_turn_chain < 0:
-        raise ValueError(f"max_turn_chain must be an integer >= 0, got {max_turn_chain!r}")
-    if not (isinstance(time_limit, int | float) and math.isfinite(time_limit) and time_limit > 0):
-        raise ValueError(f"time_limit must be a positive number of seconds, got {time_limit!r}")
+    max_expansions, time_limit = check_limits(max_expansions, time_limit)
+    if max_expansions is None:
+        max_expansions = 3000
+    check_option(max_turn_chain, "max_turn_chain", 0, integer=True, lo_ok=True)
     robot = scenario.robot
     L = robot.L
     # off-line work, outside the planning time (the paper: "the processing of the model of
@@ -330,15 +342,13 @@ def _plan(
     if heuristic == "c":
         if ds is None:
             ds = _scenario_ds(scenario)
-        if not (isinstance(ds, int | float) and math.isfinite(ds) and ds >= 0):
-            raise ValueError(f"ds must be a finite number >= 0, got {ds!r}")
-        ds_over_L = float(ds) / L
+        ds_over_L = check_option(ds, "ds", 0.0, lo_ok=True) / L
     else:
         ds_over_L = 0.0
     if alpha_method == "heuristic":
         heuristic_coefficients()
     t0 = time.perf_counter()
-    ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
+    ws = workspace or Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     options = dict(expander or {})
     links = LinkModel(ws, alpha_method, options.get("steer_fallback", True), observer)
     ex = Expander(ws, version=version, alpha_method=alpha_method, links=links, **options)
@@ -382,6 +392,8 @@ def _plan(
         t0=t0,
         max_turn_chain=max_turn_chain,
     )
+    if with_links:  # the default planner's use: the plan and its link model, unrefined
+        return found, links
     if refine is False:
         return found
     return refine_with(found, links, **({} if refine is True else refine))

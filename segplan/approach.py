@@ -20,18 +20,58 @@ from .clearance import union_points
 from .dubins import dubins_length
 from .pose import Pose
 from .primitives import heading_angles
-from .union import Union
+from .union import Union, cubic_coefficients
 
-__all__ = ["GoalApproaches"]
+__all__ = ["APPROACH_CANDIDATES", "GoalApproaches", "steerable"]
 
 _ANGLES = heading_angles()
 GOAL = ("goal",)
+
+#: Approach states, the most promising first, that :meth:`GoalApproaches.try_approaches`
+#: screens by :func:`steerable` before it builds a union to the first ``tries`` that pass.
+APPROACH_CANDIDATES = 8
+#: Frames sampled per pose pair by :func:`steerable`, abscissae (fractions of the span).
+_FRAMES = (np.arange(1, 8) / 8.0)[None, :, None]
+_TAU = np.linspace(0.0, 1.0, 17)[None, None, :]
+
+
+def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float = 1.1) -> np.ndarray:
+    """Which poses ``p1`` (``(n, 3)``) a union from ``p0`` may reach within the steering limit.
+
+    A cheap screen before a union is built (vectorised over the poses): a cubic union
+    exists (the feasible interval of alpha is not empty, section "Union of two nodes")
+    and, over 7 frames across that interval, the smallest peak curvature of the rear
+    path sampled at 17 abscissae is below ``slack * max_curvature`` (a coarser sampling
+    than :class:`segplan.links.LinkModel`'s steering fallback; ``slack`` keeps most
+    unions the samples misjudge). A heuristic, not a proof: it only orders the tries of
+    :meth:`GoalApproaches.try_approaches`, never decides that no plan exists.
+    """
+    p1 = np.asarray(p1, dtype=float).reshape(-1, 3)
+    dx, dy = p1[:, 0] - p0[0], p1[:, 1] - p0[1]
+    d = np.hypot(dx, dy)
+    psi = np.arctan2(dy, dx)
+    phi0 = np.remainder(p0[2] - psi + math.pi, 2.0 * math.pi) - math.pi
+    phi1 = np.remainder(p1[:, 2] - psi + math.pi, 2.0 * math.pi) - math.pi
+    lo = -0.5 * math.pi - np.minimum(np.minimum(phi0, phi1), 0.0)
+    hi = 0.5 * math.pi - np.maximum(np.maximum(phi0, phi1), 0.0)
+    ok = (hi > lo) & (d > 1e-9)
+    if not ok.any():
+        return ok
+    d, phi0, phi1, lo, hi = (v[ok, None, None] for v in (d, phi0, phi1, lo, hi))
+    alphas = lo + (hi - lo) * _FRAMES
+    X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alphas)
+    x = X * _TAU
+    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
+    fpp = 2.0 * c2 + 6.0 * c3 * x
+    peak = np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=2).min(axis=1)
+    ok[ok] = peak < slack * max_curvature
+    return ok
 
 
 class GoalApproaches:
     """Mixin of the lattice search (:mod:`segplan.lattice`): the goal's approach tree.
 
-    Uses the search's ``prims``, ``r``, ``L``, ``R``, ``start``, ``goal``, ``grid``,
+    Uses the search's ``prims``, ``fine``, ``r``, ``L``, ``R``, ``start``, ``goal``, ``grid``,
     ``ex``, ``ws``, ``heap``, ``goal_g``, ``goal_parent`` and :meth:`certified`.
     """
 
@@ -53,8 +93,10 @@ class GoalApproaches:
         predecessors of a state are reached by the primitives backwards. The edges into a
         state are screened at once by the primitives' points on the clearance grid; the
         unsure ones go to :meth:`certified`. Keeps the states within ``budget`` (LONGD to
-        the goal), at most ``limit`` of them.
+        the goal), at most ``limit`` of them. A later call with a larger ``limit`` resumes
+        the same search (:meth:`grow_approaches`).
         """
+        self.approach_budget_used = float(budget)
         into = [[] for _ in range(len(self.prims))]  # heading -> [(h0, m)] of primitives ending at it
         for h0, prims in enumerate(self.prims):
             for m, p in enumerate(prims):
@@ -62,16 +104,31 @@ class GoalApproaches:
         # goal frame -> start (lattice) frame: a rotation by the heading difference and a shift
         dth = self.goal.theta - self.start.theta
         rot = np.array([[math.cos(dth), -math.sin(dth)], [math.sin(dth), math.cos(dth)]])
-        origin = self.grid.to_lattice(np.array(self.goal[:2]))
-        grid = self.grid
-        pts_in = [np.stack([self.prims[h0][m].points for h0, m in e]) @ rot.T if e else None for e in into]
-        dl_in = [np.array([self.prims[h0][m].delta for h0, m in e]) + 1e-9 if e else None for e in into]
-        goal_key = (0, 0, 0)
-        cost = {goal_key: 0.0}
-        nxt = {goal_key: None}  # key -> (next key, h0, m) of the primitive to it
-        done = set()
-        heap = [(0.0, goal_key)]
-        out = []
+        self._back = dict(
+            into=into,
+            rot=rot,
+            origin=self.grid.to_lattice(np.array(self.goal[:2])),
+            pts_in=[np.stack([self.prims[h0][m].points for h0, m in e]) @ rot.T if e else None for e in into],
+            dl_in=[np.array([self.prims[h0][m].delta for h0, m in e]) + 1e-9 if e else None for e in into],
+            cost={(0, 0, 0): 0.0},
+            done=set(),
+            heap=[(0.0, (0, 0, 0))],
+            out=[],
+        )
+        self.approach_next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
+        self.grow_approaches(limit)
+
+    def grow_approaches(self, limit: int):
+        """Resume :meth:`build_approaches` until ``limit`` states (or none is left).
+
+        Sets ``approach_exhausted``: the backward search ran out of states, so the states
+        found are *all* the states of the goal's lattice from which a chain of free
+        primitives reaches the goal (with ``budget`` infinite; see :meth:`start_joins`).
+        """
+        b = self._back
+        into, rot, origin, pts_in, dl_in = b["into"], b["rot"], b["origin"], b["pts_in"], b["dl_in"]
+        cost, done, heap, out, nxt = b["cost"], b["done"], b["heap"], b["out"], self.approach_next
+        budget, grid, goal_key = self.approach_budget_used, self.grid, (0, 0, 0)
         while heap and len(out) < limit:
             c, key = heapq.heappop(heap)
             if key in done:
@@ -94,15 +151,20 @@ class GoalApproaches:
                 if bad[k] or prev in done or nc > budget or not nc < cost.get(prev, math.inf):
                     continue
                 if not free[k]:
+                    # the primitive's finer points (as the forward search uses): a tighter
+                    # screen, so fewer certified tests
+                    fp, fd = self.fine[h0]
                     u = self.approach_union(prev, key, h0, m)
-                    world = (pts_in[h][k] + base[k]) @ grid.rot.T + (self.start.x, self.start.y)
-                    if not self.certified(u, world, dl_in[h][k]):
+                    world = (fp[m] @ rot.T + base[k]) @ grid.rot.T + (self.start.x, self.start.y)
+                    if not self.certified(u, world, fd[m] + 1e-9):
                         continue
                 cost[prev], nxt[prev] = nc, (key, h0, m)
                 heapq.heappush(heap, (nc, prev))
-        self.approach_keys = out
+        while heap and heap[0][1] in done:
+            heapq.heappop(heap)
+        self.approach_exhausted = not heap
+        self.approach_keys = list(out)
         self.approach_cost = np.array([cost[k] for k in out])
-        self.approach_next = nxt
         poses = np.array([self.goal_pose(k) for k in out]).reshape(-1, 3)
         self.approach_poses = poses
         self.approach_lattice = (
@@ -110,6 +172,28 @@ class GoalApproaches:
             if len(out)
             else np.zeros((0, 3))
         )
+
+    def start_joins(self) -> bool:
+        """Does a free union within the steering limit join the start to an approach state?
+
+        With ``approach_exhausted`` (and no budget) the approach states are every state
+        of the goal's lattice that reaches the goal: if the start joins none of them (nor
+        the goal, which the planner tries first), no plan made of a union from the start
+        and a chain of primitives in the goal's frame exists, the backward counterpart of
+        an exhausted search on the start's lattice.
+        """
+        if not len(self.approach_keys):
+            return False
+        P = tuple(self.start)
+        for Q in self.approach_poses.tolist():  # every one (no screen: this decides a NoPathError)
+            u = self.ex.union(Pose(*P), Pose(*Q))
+            if u is None or not self.ws.curvature_ok(u):
+                continue
+            pts, dl = union_points(u)
+            free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
+            if not bad[0] and (free[0] or self.certified(u, pts, dl)):
+                return True
+        return False
 
     def approach_union(self, prev, key, h0, m) -> Union:
         """The union of primitive ``(h0, m)`` from goal-frame state ``prev`` to ``key``."""
@@ -135,9 +219,12 @@ class GoalApproaches:
             return
         a = self.approach_lattice
         est = g + self.approach_cost + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
-        for k in np.argsort(est, kind="stable")[:tries]:
-            if not est[k] < self.goal_g:
-                break
+        order = np.argsort(est, kind="stable")[:APPROACH_CANDIDATES]
+        order = order[est[order] < self.goal_g]
+        # the most promising states by Dubins length are often those no single union reaches
+        # (a turn tighter than a cubic can make): screen them first
+        order = order[steerable(P, self.approach_poses[order], self.ws.max_curvature)][:tries]
+        for k in order:
             Q = Pose(*self.approach_poses[k].tolist())
             u = self.ex.union(Pose(*P), Q)
             if u is None or not self.ws.curvature_ok(u):

@@ -49,6 +49,15 @@ shape of Hybrid A* (Dolgov et al. 2008):
   tries once more at half the cell size. Before searching, the grid's free cells
   (8-connected) must join the start's rear point to the goal's: if they do not, no path
   exists at all and the error comes at once (an enclosed goal).
+* **A goal that looks enclosed**: the goal's approach tree is a backward search over the
+  lattice laid out in the goal's frame. After :data:`ENCLOSURE_AFTER` expansions without
+  a plan it is grown to :data:`ENCLOSURE_LIMIT` states (4 times as many at half the
+  cell); if it runs out of states first and no free union joins the start to one of
+  them, the goal can be reached neither by that lattice's primitives nor by a union
+  from the start. A union from a state of the start's lattice might still reach it, so
+  this is no proof: the search goes on for :data:`ENCLOSED_EXPANSIONS` expansions, then
+  stops with ``reason="expansions"`` and says why. A goal a few decimetres in front of a
+  wall, facing away from it, looks so (and is).
 
 :func:`plan_lattice` returns a :class:`segplan.search.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines
@@ -60,6 +69,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
+import weakref
 
 import numpy as np
 
@@ -69,16 +79,48 @@ from .cost import longd_exact_intrinsic
 from .dubins import dubins_length_scalar
 from .frame import heuristic_coefficients
 from .links import LinkModel
-from .path import NoPathError, Plan
+from .path import NoPathError, Plan, check_limits, check_option
 from .pose import Pose
 from .primitives import fine_points, heading_angles, max_reach, primitive_set
 from .union import Union
 from .validity import Workspace
 from .world import Scenario
 
-__all__ = ["GOAL_RADIUS", "lattice_search", "plan_lattice"]
+__all__ = [
+    "ENCLOSED_EXPANSIONS",
+    "ENCLOSURE_AFTER",
+    "ENCLOSURE_LIMIT",
+    "GOAL_RADIUS",
+    "LATTICE_MAX_EXPANSIONS",
+    "lattice_search",
+    "plan_lattice",
+]
 
 _ANGLES = heading_angles()
+
+
+_TABLES: dict = {}  # (id of a live primitive set, cell) -> its per-heading tables
+
+
+def _tables(ps, cell: float):
+    """Per heading: the primitives' points, their cells ``(i, j)`` relative to the start's
+    cell (grid cell ``cell``), covering radii, steps ``(di, dj, h1)`` and costs. Computed
+    once per primitive set and cell (kept while the set lives)."""
+    key = (id(ps), float(cell))
+    out = _TABLES.get(key)
+    if out is None:
+        points, cells, delta, step, cost = [], [], [], [], []
+        for prims in ps.by_heading:
+            pts = np.stack([p.points for p in prims])
+            points.append(pts)
+            cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
+            delta.append(np.array([p.delta for p in prims]) + 1e-9)
+            step.append([(p.di, p.dj, p.h1) for p in prims])
+            cost.append([p.cost for p in prims])
+        out = (points, cells, delta, step, cost)
+        _TABLES[key] = out
+        weakref.finalize(ps, _TABLES.pop, key, None)
+    return out
 
 
 class _LatticeSearch(GoalApproaches):
@@ -96,22 +138,19 @@ class _LatticeSearch(GoalApproaches):
         self.weight, self.every, self.goal_radius = weight, analytic_every, goal_radius
         self.banned = banned
         self.approach_after, self.approach_tries, self.approach_limit = 32, 2, 60
-        self.approach_budget = math.pi * self.R + 2.0 * self.L
+        self.approach_budget = math.inf  # the nearest approach_limit states (all, if fewer)
+        # the goal's enclosure test: the approach tree grown to this many states (more on a
+        # finer lattice) after ENCLOSURE_AFTER expansions without a plan
+        self.enclosure_limit = int(round(ENCLOSURE_LIMIT * (0.125 * self.L / r) ** 2))
         ps = primitive_set(robot.L, robot.max_steer, r)
         self.prims = ps.by_heading
         th = self.start.theta
         self.c, self.s = math.cos(th), math.sin(th)
         gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
         self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
-        self.offsets, self.delta, self.step, self.cost, self.points = [], [], [], [], []
         self.fine = fine_points(ps)  # finer points for primitives close to obstacles
-        for prims in ps.by_heading:
-            pts = np.stack([p.points for p in prims])
-            self.points.append(pts)
-            self.offsets.append(grid.offsets(pts))
-            self.delta.append(np.array([p.delta for p in prims]) + 1e-9)
-            self.step.append([(p.di, p.dj, p.h1) for p in prims])
-            self.cost.append([p.cost for p in prims])
+        self.points, cells, self.delta, self.step, self.cost = _tables(ps, grid.cell)
+        self.offsets = [i * grid.ny + j for i, j in cells]  # flat-index offsets in this grid
 
     def pose(self, key):
         """World pose of a lattice state."""
@@ -166,6 +205,30 @@ class _LatticeSearch(GoalApproaches):
         self.goal_g, self.goal_parent = g + c, (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
+    def enclosed(self, expanded: int) -> bool:
+        """Grow the goal's approach tree when due; True if the goal looks enclosed.
+
+        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions
+        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER`. If it runs
+        out of states first, it holds every state of the goal's lattice that reaches the
+        goal by primitives; if no union joins the start to any of them
+        (:meth:`start_joins`), no plan made of a union and such primitives exists. A union
+        from a state of the start's lattice may still reach the goal (not a proof): the
+        search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
+        """
+        if self.approach_keys is None and expanded >= self.approach_after:
+            self.build_approaches(self.approach_budget, self.approach_limit)
+        elif (
+            self.approach_keys is not None
+            and not self.approach_exhausted
+            and expanded >= ENCLOSURE_AFTER
+            and len(self.approach_keys) < self.enclosure_limit
+        ):
+            self.grow_approaches(self.enclosure_limit)
+        else:
+            return False
+        return self.approach_exhausted and not self.start_joins()
+
     def run(self, max_expansions: int, deadline: float):
         start = (0, 0, 0)
         self.g = {start: 0.0}
@@ -182,10 +245,13 @@ class _LatticeSearch(GoalApproaches):
         reason = "exhausted"
         heap, r, q, grid = self.heap, self.r, self.q, self.grid
         lower, blocked = grid.lower_flat, grid.blocked_flat
+        stop_at = math.inf  # set when the goal looks enclosed
         while heap:
             if expanded >= max_expansions:
                 reason = "expansions"
                 break
+            if expanded >= stop_at:
+                return ("enclosed", expanded)
             if expanded % 64 == 0 and time.perf_counter() > deadline:
                 reason = "time"
                 break
@@ -206,8 +272,8 @@ class _LatticeSearch(GoalApproaches):
             if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
                 P = self.pose(key)
                 self.try_goal(key, P, g)
-            if self.approach_keys is None and expanded >= self.approach_after and self.goal_parent is None:
-                self.build_approaches(self.approach_budget, self.approach_limit)
+            if self.goal_parent is None and stop_at == math.inf and self.enclosed(expanded):
+                stop_at = expanded + ENCLOSED_EXPANSIONS
             if self.approach_keys and hd <= self.goal_radius:
                 P = P or self.pose(key)
                 self.try_approaches(key, P, g, x, y, _ANGLES[h], self.approach_tries)
@@ -288,6 +354,15 @@ class _LatticeSearch(GoalApproaches):
         )
 
 
+#: Expansions without a plan after which the goal's enclosure test runs (see
+#: :meth:`_LatticeSearch.enclosed`), and the approach states it grows to (at ``L / 8``; times
+#: 4 per halving of the resolution).
+ENCLOSURE_AFTER = 256
+ENCLOSURE_LIMIT = 300
+#: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
+#: the start's lattice may still reach it: not a proof), before it stops.
+ENCLOSED_EXPANSIONS = 512
+
 #: Nodes ahead that :func:`_shortcut` tries to reach by one union.
 SHORTCUT_WINDOW = 16
 
@@ -338,6 +413,9 @@ def _shortcut(plan, ex, grid, t0):
         seconds=time.perf_counter() - t0,
     )  # fmt: skip
 
+
+#: Default ``max_expansions`` of the lattice search.
+LATTICE_MAX_EXPANSIONS = 200_000
 
 #: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
 GOAL_RADIUS = (2.0, 1.0)
@@ -403,26 +481,12 @@ def _direct_plan(ws, start, u, t0):
     )
 
 
-def _check(value, name, lo, integer=False, allow_none=False):
-    if value is None and allow_none:
-        return None
-    ok = (
-        not isinstance(value, bool) and isinstance(value, int | float) and math.isfinite(value) and value > lo
-    )
-    if ok and integer:
-        ok = int(value) == value
-    if not ok:
-        kind = "an integer" if integer else "a finite number"
-        raise ValueError(f"{name} must be {kind} > {lo}, got {value!r}")
-    return int(value) if integer else float(value)
-
-
 def plan_lattice(
     scenario,
     *,
     resolution: float | None = None,
     weight: float = 2.0,
-    max_expansions: int = 200_000,
+    max_expansions: int | None = None,
     time_limit: float = 10.0,
     retry: bool = True,
     analytic_every: int = 8,
@@ -439,7 +503,8 @@ def plan_lattice(
     weight : float
         Factor on the admissible ``h'`` (>= 1; 1: the cheapest plan over the lattice).
     max_expansions, time_limit : int, float
-        Limits (NoPathError with ``reason="expansions"`` or ``"time"``).
+        Limits (NoPathError with ``reason="expansions"`` or ``"time"``); ``max_expansions``
+        None: :data:`LATTICE_MAX_EXPANSIONS`.
     retry : bool
         After an exhausted lattice, search once more at half the cell size.
     analytic_every : int
@@ -484,31 +549,35 @@ def lattice_search(
     *,
     resolution=None,
     weight=2.0,
-    max_expansions=200_000,
+    max_expansions=None,
     time_limit=10.0,
     retry=True,
     analytic_every=8,
     goal_radius=None,
     cell=None,
     t0=None,
+    workspace=None,
 ):
-    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used."""
+    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used.
+
+    ``workspace``: a :class:`segplan.validity.Workspace` of this scenario to reuse (the
+    default planner passes the paper's search's; its counters then add up).
+    """
 
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
-    resolution = _check(resolution, "resolution", 0.0, allow_none=True)
+    resolution = check_option(resolution, "resolution", 0.0, allow_none=True)
     if resolution is not None and resolution > L:
         raise ValueError(f"resolution must be at most L={L}, got {resolution!r}")
-    weight = _check(weight, "weight", 0.0)
-    if weight < 1.0:
-        raise ValueError(f"weight must be >= 1 (1: the admissible h'), got {weight!r}")
-    max_expansions = _check(max_expansions, "max_expansions", 0, integer=True)
-    time_limit = _check(time_limit, "time_limit", 0.0)
-    analytic_every = _check(analytic_every, "analytic_every", 0, integer=True)
-    goal_radius = _check(goal_radius, "goal_radius", 0.0, allow_none=True)
-    cell = _check(cell, "cell", 0.0, allow_none=True)
+    weight = check_option(weight, "weight", 1.0, lo_ok=True)  # 1: the admissible h'
+    max_expansions, time_limit = check_limits(max_expansions, time_limit)
+    if max_expansions is None:
+        max_expansions = LATTICE_MAX_EXPANSIONS
+    analytic_every = check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True)
+    goal_radius = check_option(goal_radius, "goal_radius", 0.0, allow_none=True)
+    cell = check_option(cell, "cell", 0.0, allow_none=True)
     if not isinstance(retry, bool):
         raise ValueError(f"retry must be True or False, got {retry!r}")
     res = resolution or 0.125 * L
@@ -521,7 +590,7 @@ def lattice_search(
     heuristic_coefficients()
     t0 = time.perf_counter() if t0 is None else t0
     deadline = t0 + time_limit
-    ws = Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
+    ws = workspace or Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
     ex = LinkModel(ws)
     start, goal = scenario.start, scenario.goal
     # the paper's direct union first: where it is free, it is the plan (no grid to build)
@@ -541,6 +610,7 @@ def lattice_search(
     la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
     banned: set = set()
     expanded_total = 0
+    proofs: list = []  # (resolution, "exhausted" or "enclosed", approach states) per try
     for k, r in enumerate(tries):
         search = _LatticeSearch(
             scenario,
@@ -580,14 +650,26 @@ def lattice_search(
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
         expanded_total += expanded
+        proofs.append((r, outcome, len(search.approach_keys or ())))
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
-            what = {
-                "exhausted": "every reachable lattice state was expanded at resolution "
-                + " and ".join(f"{t:.4g} m" for t in tries[: k + 1]),
-                "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
-                "time": f"the time limit time_limit={time_limit:g} s was reached",
-            }[outcome]
+            if outcome == "exhausted":
+                what = "every reachable lattice state was expanded at resolution " + " and ".join(
+                    f"{t:.4g} m" for t, _, _ in proofs
+                )
+            elif outcome == "enclosed":
+                what = (
+                    f"the goal looks enclosed: only {proofs[-1][2]} states of the lattice laid out "
+                    f"in the goal's frame (resolution {r:.4g} m) reach it by primitives and no union "
+                    f"from the start reaches one of them; the search stopped {ENCLOSED_EXPANSIONS} "
+                    "expansions later (a limit, not a proof)"
+                )
+                outcome = "expansions"
+            else:
+                what = {
+                    "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
+                    "time": f"the time limit time_limit={time_limit:g} s was reached",
+                }[outcome]
             fail(
                 outcome,
                 f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded_total} states",

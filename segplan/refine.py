@@ -419,7 +419,12 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     if ws.bounds is not None:
         xmin, ymin, xmax, ymax = ws.bounds
         bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
-    for poly, (x0, y0, x1, y1) in zip(ws.convex, ws.boxes, strict=True):
+    # only the obstacles whose box meets the samples' box can hold a sample (large floors)
+    bb = ws.box_array
+    lo_x, hi_x, lo_y, hi_y = wx.min(), wx.max(), wy.min(), wy.max()
+    meet = (bb[:, 0] < hi_x) & (bb[:, 2] > lo_x) & (bb[:, 1] < hi_y) & (bb[:, 3] > lo_y)
+    for i in np.flatnonzero(meet).tolist():
+        poly, (x0, y0, x1, y1) = ws.convex[i], ws.boxes[i]
         near = (wx > x0) & (wx < x1) & (wy > y0) & (wy < y1)  # inside the box: worth the edges
         if not near.any():
             continue

@@ -113,6 +113,11 @@ class _Facts:
         self.samples = None
 
 
+#: Obstacles above which :meth:`Workspace.colliding` and :meth:`Workspace.pose_free` pre-screen
+#: them with arrays (large floors; below, the scalar loops alone, as before).
+VECTOR_SCREEN_MIN = 64
+
+
 class Workspace:
     """Enlarged convex obstacles, bounds and robot limits, with cheap tests first.
 
@@ -160,6 +165,14 @@ class Workspace:
         # circumscribed circles (centre of the bounding box, largest vertex distance), inflated
         # by a relative margin so the broad phase never rejects a touching polygon
         self._circles = [(c.centre[0], c.centre[1], c.radius * (1.0 + 1e-9) + 1e-9) for c in self.convex]
+        # the same circles, and the vertices padded to a common count (the first repeated),
+        # as arrays: the broad phase of floors of many obstacles, vectorised (the same
+        # floating-point operations as the scalar loop, so the same decisions)
+        self._circle_array = np.array(self._circles, dtype=float).reshape(-1, 3)
+        k = max((len(p) for p in self.polygons), default=1)
+        self._vertex_array = np.array(
+            [np.concatenate((p, np.repeat(p[:1], k - len(p), axis=0))) for p in self.polygons], dtype=float
+        ).reshape(-1, k, 2)
         #: Bounding boxes ``(xmin, ymin, xmax, ymax)`` of the obstacles (Python floats).
         self.boxes = [c.box for c in self.convex]
         #: The same bounding boxes as an ``(n, 4)`` array (for vectorised screens).
@@ -184,9 +197,21 @@ class Workspace:
             tol = bounds_tolerance(x, y, L, self.bounds)
             if not segment_in_bounds((x, y), (x + dx, y + dy), self.bounds, tol):
                 return False
-        for c, edges in zip(self.convex, self._edge_lists, strict=True):
+        if len(self.convex) > VECTOR_SCREEN_MIN:
+            # an obstacle whose circle is farther than the segment's half-length + L / 10
+            # from its middle is left out: the scalar test could not find it touching (its
+            # tolerance is ~1e-9 of the scene; a separating axis leaves a gap of at least
+            # L / 10 times the sine of half the polygon's sharpest angle)
+            C = self._circle_array
+            mx, my = x + 0.5 * dx, y + 0.5 * dy
+            reach = C[:, 2] + 0.6 * L + 1e-6
+            near = np.flatnonzero((C[:, 0] - mx) ** 2 + (C[:, 1] - my) ** 2 <= reach * reach).tolist()
+        else:
+            near = range(len(self.convex))
+        for i in near:
+            c = self.convex[i]
             tol = touch_tolerance(x, y, L, c.centre, c.radius)
-            if segment_hits_edges(x, y, dx, dy, edges, tol):
+            if segment_hits_edges(x, y, dx, dy, self._edge_lists[i], tol):
                 return False
         return True
 
@@ -300,7 +325,11 @@ class Workspace:
         x0, x1, y0, y1 = sw.box
         c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
         candidates = range(len(self.polygons)) if only is None else only
-        near = []
+        if only is None and len(self.polygons) > VECTOR_SCREEN_MIN:
+            near = self._broad_phase(known, sw)
+            candidates = ()
+        else:
+            near = []
         for i in candidates:
             if i in known:  # decided by the broad phase before (pairs are counted once)
                 if known[i] is not None:
@@ -352,6 +381,40 @@ class Workspace:
                 if first:
                     break
         return out
+
+    def _broad_phase(self, known: dict, sw) -> list:
+        """The scalar broad phase of :meth:`colliding` over every obstacle, vectorised.
+
+        The same floating-point operations on arrays (circle against the frame box, then
+        the polygon's frame box), so the same decisions, cache entries and counts.
+        """
+        x0, x1, y0, y1 = sw.box
+        c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
+        near = [(v, i) for i, v in known.items() if v is not None]
+        unseen = np.ones(len(self.polygons), dtype=bool)
+        if known:
+            unseen[np.fromiter(known, dtype=np.int64, count=len(known))] = False
+        U = np.flatnonzero(unseen)
+        if not len(U):
+            return near
+        C = self._circle_array[U]
+        dx, dy = C[:, 0] - ox, C[:, 1] - oy
+        fx, fy = c * dx + s * dy, c * dy - s * dx
+        ex = np.maximum(np.maximum(x0 - fx, 0.0), fx - x1)
+        ey = np.maximum(np.maximum(y0 - fy, 0.0), fy - y1)
+        inside = ~(ex * ex + ey * ey > C[:, 2] * C[:, 2])
+        S = U[inside]
+        V = self._vertex_array[S]
+        vx, vy = V[:, :, 0] - ox, V[:, :, 1] - oy
+        px, py = c * vx + s * vy, c * vy - s * vx
+        px_min = px.min(axis=1)
+        keep = ~((px.max(axis=1) < x0) | (px_min > x1) | (py.max(axis=1) < y0) | (py.min(axis=1) > y1))
+        self.stats.broad_rejections += len(U) - int(keep.sum())
+        known.update(dict.fromkeys(U.tolist()))
+        for i, v in zip(S[keep].tolist(), px_min[keep].tolist(), strict=True):
+            known[i] = v
+            near.append((v, i))
+        return near
 
     def union_free(self, u: Union) -> bool:
         """Free of every obstacle, inside the bounds and within the steering limit."""

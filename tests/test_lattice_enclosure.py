@@ -1,0 +1,125 @@
+"""The lattice planner: fast "no plan" for an enclosed goal, the approach screen, one option validator."""
+
+import math
+
+import numpy as np
+import pytest
+
+from segplan import NoPathError, Robot, make_scenario, plan_scenario
+from segplan import lattice as lt
+from segplan.approach import steerable
+from segplan.path import check_limits, check_option
+
+DEG = math.pi / 180.0
+
+
+def _wall_goal():
+    """Open 20 x 12 m room; the goal 0.56 m from the left wall (beyond the robot's half-width),
+    heading into the room: it can only be reached by arriving from inside the wall."""
+    robot = Robot(1.0, 0.3, 45 * DEG)
+    return make_scenario(robot, (15.0, 6.0, math.pi), (0.86, 1.52, 0.09), [], (0.0, 0.0, 20.0, 12.0))
+
+
+def test_enclosed_goal_stops_early():
+    """The goal's approach tree runs out and the start joins none of it: the search stops
+    ENCLOSED_EXPANSIONS later (a limit, said so), long before max_expansions."""
+    sc = _wall_goal()
+    with pytest.raises(NoPathError) as err:
+        lt.lattice_search(sc, max_expansions=5000)
+    e = err.value
+    assert e.reason == "expansions"
+    assert "looks enclosed" in str(e) and "not a proof" in str(e)
+    assert e.expanded <= lt.ENCLOSURE_AFTER + lt.ENCLOSED_EXPANSIONS + 1
+    assert e.best is not None and e.best.nodes[0] == sc.start
+
+
+def test_forward_search_alone_finds_no_plan_either(monkeypatch):
+    """Without the enclosure test, the forward search finds no plan there either."""
+    monkeypatch.setattr(lt._LatticeSearch, "enclosed", lambda self, expanded: False)
+    with pytest.raises(NoPathError) as err:
+        lt.lattice_search(_wall_goal(), max_expansions=1500, retry=False)
+    assert err.value.reason in ("expansions", "exhausted")
+
+
+def test_default_planner_reports_the_enclosed_goal():
+    with pytest.raises(NoPathError) as err:
+        plan_scenario(_wall_goal(), max_expansions=5000)
+    assert err.value.reason == "expansions" and err.value.expanded < 5000
+
+
+def test_goal_by_a_wall_reached_by_a_union_is_planned():
+    """A goal 0.15 m below the top wall: the goal's lattice reaches it from a handful of
+    states only, but a union from the start's lattice does (random floor natural-066)."""
+    from segplan.studies.floors import random_floor
+
+    plan = plan_scenario(random_floor("natural", 66), max_expansions=1000)
+    assert plan.kinds[-1] == "goal"
+
+
+def test_reachable_goal_near_a_wall_is_still_planned():
+    """The same goal turned to face the wall is reachable: no enclosure is claimed."""
+    robot = Robot(1.0, 0.3, 45 * DEG)
+    sc = make_scenario(robot, (15.0, 6.0, math.pi), (1.5, 1.52, math.pi), [], (0.0, 0.0, 20.0, 12.0))
+    plan = plan_scenario(sc)
+    assert plan.nodes[-1] == sc.goal
+
+
+def test_steerable_screens_unions():
+    p0 = (0.0, 0.0, 0.0)
+    ahead = np.array([(3.0, 0.5, 0.2), (3.0, -0.5, -0.2)])
+    behind = np.array([(-3.0, 0.0, 0.0), (0.0, 0.2, math.pi)])
+    assert steerable(p0, ahead, 1.0).all()
+    assert not steerable(p0, behind, 1.0).any()
+    tight = np.array([(0.3, 0.3, 1.5)])  # a quarter turn within 0.3 m: far beyond curvature 1
+    assert not steerable(p0, tight, 1.0).any()
+
+
+@pytest.mark.parametrize(
+    "value, kwargs",
+    [(True, {}), (float("nan"), {}), (0.0, {}), (-1.0, {"lo_ok": True}), (1.5, {"integer": True}), ("1", {})],
+)
+def test_check_option_names_the_argument(value, kwargs):
+    with pytest.raises(ValueError, match="my_option"):
+        check_option(value, "my_option", 0.0, **kwargs)
+
+
+def test_check_limits():
+    assert check_limits(None, 2) == (None, 2.0)
+    assert check_limits(5.0, 0.5) == (5, 0.5)
+    with pytest.raises(ValueError, match="max_expansions"):
+        check_limits(0, 1.0)
+    with pytest.raises(ValueError, match="time_limit"):
+        check_limits(10, float("inf"))
+
+
+def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
+    """Above VECTOR_SCREEN_MIN obstacles colliding() and pose_free() screen with arrays: the
+    same answers, cache entries and broad-phase counts as the scalar loops."""
+    from segplan import validity
+    from segplan.links import LinkModel
+    from segplan.pose import Pose
+    from segplan.studies.floors import sweep_floor
+
+    sc = sweep_floor(4.0, 128, 0)  # 80 x 48 m, 128 obstacles
+    rng = np.random.default_rng(7)
+    fb = sc.free_bounds
+    poses = [
+        Pose(rng.uniform(fb[0], fb[2]), rng.uniform(fb[1], fb[3]), rng.uniform(-math.pi, math.pi))
+        for _ in range(120)
+    ]
+
+    def run():
+        ws = validity.Workspace(sc.enlarged, sc.robot.L, fb, sc.robot.max_curvature)
+        links = LinkModel(ws)
+        out = [ws.pose_free(p) for p in poses]
+        for a, b in zip(poses[:-1], poses[1:], strict=True):
+            u = links.union(a, Pose(a.x + (b.x - a.x) * 0.2, a.y + (b.y - a.y) * 0.2, b.theta))
+            if u is not None:
+                out.append((ws.colliding(u, first=False), sorted(ws.facts(u).near.items())))
+        return out, ws.stats.broad_rejections
+
+    vector = run()
+    monkeypatch.setattr(validity, "VECTOR_SCREEN_MIN", 10**9)
+    scalar = run()
+    assert vector == scalar
+    assert vector[1] > 0 and any(isinstance(x, tuple) and x[0] for x in vector[0])
