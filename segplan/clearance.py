@@ -16,8 +16,17 @@ import numpy as np
 from scipy import ndimage
 
 from .geometry import ConvexPolygon
+from .world import Scenario
 
-__all__ = ["ClearanceGrid", "DistanceField", "obstacles_near", "union_free_near", "union_points"]
+__all__ = [
+    "MAX_CELLS",
+    "ClearanceGrid",
+    "DistanceField",
+    "grid_resolutions",
+    "obstacles_near",
+    "union_free_near",
+    "union_points",
+]
 
 #: Samples of a union: abscissae (fractions of its frame span) and positions along the segment.
 _U_S = np.linspace(0.0, 1.0, 33)
@@ -315,3 +324,44 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
         if lb > delta:
             return True, 0
     return ws.in_bounds(u) and not ws.colliding(u, only=near), 1
+
+
+#: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
+MAX_CELLS = 2.0e6
+
+
+def grid_resolutions(
+    scenario: Scenario, tries: list[float], cell: float | None, margin: float, free_resolution: bool
+) -> tuple[list[float], float]:
+    """Resolutions for :mod:`segplan.lattice` to try and the clearance grid's cell (which must
+    divide each of them).
+
+    By default the cell is half the finest resolution but not below ``L / 16``; where the
+    grid would exceed :data:`MAX_CELLS` (an estimate from the floor's size, any rotation), the
+    cell grows to the finest resolution, then the retry is dropped, then (only when the
+    resolution was not given) the lattice coarsens by halves, up to ``L``.
+    """
+    L = scenario.robot.L
+    fine = tries[-1]
+    if cell is not None:
+        if any(abs(round(t / cell) * cell - t) > 1e-9 * t for t in tries):
+            raise ValueError(f"cell must divide the resolutions {tries}, got {cell!r}")
+        return tries, cell
+    fb = scenario.free_bounds
+    if fb is None:
+        pts = np.concatenate([np.array([scenario.start[:2], scenario.goal[:2]])] + list(scenario.enlarged))
+        fb = (*(pts.min(axis=0) - margin), *(pts.max(axis=0) + margin))
+    area = 0.5 * ((fb[2] - fb[0]) + (fb[3] - fb[1])) ** 2  # the rotated box, at worst
+    cell = 0.5 * fine if 0.5 * fine >= L / 16.0 - 1e-12 else fine
+    while area / cell**2 > MAX_CELLS:
+        if cell < fine:
+            cell = fine
+        elif len(tries) > 1:
+            tries = tries[:1]
+            cell = tries[0]
+        elif free_resolution and 2.0 * tries[0] <= L:
+            tries = [2.0 * tries[0]]
+            cell = tries[0]
+        else:
+            break
+    return tries, cell

@@ -69,19 +69,19 @@ from __future__ import annotations
 import heapq
 import math
 import time
-import weakref
 
 import numpy as np
 
 from .approach import GOAL, GoalApproaches
-from .clearance import ClearanceGrid, DistanceField, union_free_near, union_points
+from .clearance import ClearanceGrid, DistanceField, grid_resolutions, union_free_near, union_points
 from .cost import longd_exact_intrinsic
 from .dubins import dubins_length_scalar
 from .frame import heuristic_coefficients
 from .links import LinkModel
 from .path import NoPathError, Plan, check_limits, check_option
 from .pose import Pose
-from .primitives import fine_points, heading_angles, max_reach, primitive_set
+from .primitives import fine_points, heading_angles, heading_tables, max_reach, primitive_set
+from .shortcut import shortcut_plan
 from .union import Union
 from .validity import Workspace
 from .world import Scenario
@@ -97,30 +97,6 @@ __all__ = [
 ]
 
 _ANGLES = heading_angles()
-
-
-_TABLES: dict = {}  # (id of a live primitive set, cell) -> its per-heading tables
-
-
-def _tables(ps, cell: float):
-    """Per heading: the primitives' points, their cells ``(i, j)`` relative to the start's
-    cell (grid cell ``cell``), covering radii, steps ``(di, dj, h1)`` and costs. Computed
-    once per primitive set and cell (kept while the set lives)."""
-    key = (id(ps), float(cell))
-    out = _TABLES.get(key)
-    if out is None:
-        points, cells, delta, step, cost = [], [], [], [], []
-        for prims in ps.by_heading:
-            pts = np.stack([p.points for p in prims])
-            points.append(pts)
-            cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
-            delta.append(np.array([p.delta for p in prims]) + 1e-9)
-            step.append([(p.di, p.dj, p.h1) for p in prims])
-            cost.append([p.cost for p in prims])
-        out = (points, cells, delta, step, cost)
-        _TABLES[key] = out
-        weakref.finalize(ps, _TABLES.pop, key, None)
-    return out
 
 
 class _LatticeSearch(GoalApproaches):
@@ -149,7 +125,7 @@ class _LatticeSearch(GoalApproaches):
         gx, gy = grid.to_lattice(np.array(self.goal[:2])).tolist()
         self.goal_l = (gx, gy, math.remainder(self.goal.theta - th, 2 * math.pi))  # lattice frame
         self.fine = fine_points(ps)  # finer points for primitives close to obstacles
-        self.points, cells, self.delta, self.step, self.cost = _tables(ps, grid.cell)
+        self.points, cells, self.delta, self.step, self.cost = heading_tables(ps, grid.cell)
         self.offsets = [i * grid.ny + j for i, j in cells]  # flat-index offsets in this grid
 
     def pose(self, key):
@@ -363,99 +339,11 @@ ENCLOSURE_LIMIT = 300
 #: the start's lattice may still reach it: not a proof), before it stops.
 ENCLOSED_EXPANSIONS = 512
 
-#: Nodes ahead that :func:`_shortcut` tries to reach by one union.
-SHORTCUT_WINDOW = 16
-
-
-def _shortcut(plan, ex, grid, t0):
-    """Greedy shortcuts of a found plan: from each node, the farthest node within
-    :data:`SHORTCUT_WINDOW` that one free union reaches for no more LONGD than the chain.
-
-    A lattice plan has a node every few tenths of a metre; this keeps its shape with far
-    fewer nodes, so the refinement (whose shortcut step is quadratic in the nodes) stays
-    fast on long plans. Every new union keeps the steering limit and is free: screened on
-    the clearance grid, then :func:`segplan.clearance.union_free_near` where unsure, and
-    finally the certified test (the plan's own unions, kept, passed it already).
-    """
-    import dataclasses
-
-    nodes, unions, kinds = list(plan.nodes), list(plan.unions), list(plan.kinds)
-    if len(unions) < 3:
-        return plan
-    cost = [ex.link_cost(u) for u in unions]
-    out_n, out_u, out_k = [nodes[0]], [], [kinds[0]]
-    new = []  # the shortcut unions (not yet through the certified test)
-    i = 0
-    while i < len(unions):
-        best = None
-        for j in range(min(len(unions), i + SHORTCUT_WINDOW), i + 1, -1):
-            u = ex.union(nodes[i], nodes[j])
-            if u is None or not ex.ws.curvature_ok(u) or not ex.link_cost(u) <= sum(cost[i:j]):
-                continue
-            pts, dl = union_points(u)
-            free, bad = grid.screen(grid.to_lattice(pts)[None], dl)
-            if bad[0] or not (free[0] or union_free_near(ex.ws, u, pts, dl)[0]):
-                continue
-            best = (j, u)
-            break
-        j, u = best if best is not None else (i + 1, unions[i])
-        if best is not None:
-            new.append(u)
-        out_n.append(nodes[j])
-        out_u.append(u)
-        out_k.append(kinds[j])
-        i = j
-    total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
-    if not total <= plan.cost or not all(ex.ws.union_free(u) for u in new):  # the certified test
-        return plan
-    return dataclasses.replace(
-        plan, nodes=tuple(out_n), unions=tuple(out_u), kinds=tuple(out_k), cost=total,
-        seconds=time.perf_counter() - t0,
-    )  # fmt: skip
-
-
 #: Default ``max_expansions`` of the lattice search.
 LATTICE_MAX_EXPANSIONS = 200_000
 
 #: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
 GOAL_RADIUS = (2.0, 1.0)
-
-#: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
-MAX_CELLS = 2.0e6
-
-
-def _grid_plan(scenario, tries, cell, margin, free_resolution):
-    """Resolutions to try and the clearance grid's cell (which must divide each of them).
-
-    By default the cell is half the finest resolution but not below ``L / 16``; where the
-    grid would exceed :data:`MAX_CELLS` (an estimate from the floor's size, any rotation), the
-    cell grows to the finest resolution, then the retry is dropped, then (only when the
-    resolution was not given) the lattice coarsens by halves, up to ``L``.
-    """
-    L = scenario.robot.L
-    fine = tries[-1]
-    if cell is not None:
-        if any(abs(round(t / cell) * cell - t) > 1e-9 * t for t in tries):
-            raise ValueError(f"cell must divide the resolutions {tries}, got {cell!r}")
-        return tries, cell
-    fb = scenario.free_bounds
-    if fb is None:
-        pts = np.concatenate([np.array([scenario.start[:2], scenario.goal[:2]])] + list(scenario.enlarged))
-        fb = (*(pts.min(axis=0) - margin), *(pts.max(axis=0) + margin))
-    area = 0.5 * ((fb[2] - fb[0]) + (fb[3] - fb[1])) ** 2  # the rotated box, at worst
-    cell = 0.5 * fine if 0.5 * fine >= L / 16.0 - 1e-12 else fine
-    while area / cell**2 > MAX_CELLS:
-        if cell < fine:
-            cell = fine
-        elif len(tries) > 1:
-            tries = tries[:1]
-            cell = tries[0]
-        elif free_resolution and 2.0 * tries[0] <= L:
-            tries = [2.0 * tries[0]]
-            cell = tries[0]
-        else:
-            break
-    return tries, cell
 
 
 def _direct_plan(ws, start, u, t0):
@@ -517,7 +405,7 @@ def plan_lattice(
     cell : float, optional
         Cell size of the clearance grid (m; it must divide every resolution tried); by
         default half the finest resolution, not below ``L / 16``, coarser on large floors
-        (:data:`MAX_CELLS`, where the lattice coarsens too unless ``resolution`` is given).
+        (:data:`segplan.clearance.MAX_CELLS`, where the lattice coarsens too unless ``resolution`` is given).
 
     Returns
     -------
@@ -582,7 +470,7 @@ def lattice_search(
         raise ValueError(f"retry must be True or False, got {retry!r}")
     res = resolution or 0.125 * L
     tries = [res, 0.5 * res] if retry else [res]
-    tries, cell = _grid_plan(scenario, tries, cell, 4.0 * L + 4.0 * R, resolution is None)
+    tries, cell = grid_resolutions(scenario, tries, cell, 4.0 * L + 4.0 * R, resolution is None)
     # off-line work, outside the planning time (as the paper's search): the primitives (once
     # per robot and resolution; those of the retry when it comes), the fitted coefficients of
     # the heuristic frame and of [2]
@@ -645,7 +533,7 @@ def lattice_search(
             # makes the guarantee independent of it)
             bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
             if not bad:
-                return _shortcut(plan, ex, grid, t0), ex
+                return shortcut_plan(plan, ex, grid, t0), ex
             for i in bad:  # never seen in our tests; the search runs again without them
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded

@@ -61,6 +61,7 @@ __all__ = [
     "fine_points",
     "from_arrays",
     "heading_angles",
+    "heading_tables",
     "max_reach",
     "primitive_arrays",
     "primitive_set",
@@ -507,3 +508,41 @@ def compute_primitive_set(L: float, max_steer: float, resolution: float) -> Prim
         per[key] = per.get(key, 0) + 1
         keep(p)
     return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))
+
+
+_TABLES: dict = {}  # (id of a live primitive set, cell) -> its per-heading tables
+
+
+def heading_tables(ps: PrimitiveSet, cell: float) -> tuple:
+    """Per heading, the tables the lattice search (:mod:`segplan.lattice`) expands with.
+
+    Parameters
+    ----------
+    ps : PrimitiveSet
+        The motion primitives.
+    cell : float
+        The clearance grid's cell size (metres).
+
+    Returns
+    -------
+    tuple
+        ``(points, cells, delta, step, cost)``, each a list over the headings: the
+        primitives' sampled points, their cells ``(i, j)`` relative to the start's cell,
+        covering radii (plus 1e-9), steps ``(di, dj, h1)`` and LONGD costs [1]. Computed
+        once per primitive set and cell (kept while the set lives).
+    """
+    key = (id(ps), float(cell))
+    out = _TABLES.get(key)
+    if out is None:
+        points, cells, delta, step, cost = [], [], [], [], []
+        for prims in ps.by_heading:
+            pts = np.stack([p.points for p in prims])
+            points.append(pts)
+            cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
+            delta.append(np.array([p.delta for p in prims]) + 1e-9)
+            step.append([(p.di, p.dj, p.h1) for p in prims])
+            cost.append([p.cost for p in prims])
+        out = (points, cells, delta, step, cost)
+        _TABLES[key] = out
+        weakref.finalize(ps, _TABLES.pop, key, None)
+    return out
