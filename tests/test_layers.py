@@ -6,6 +6,7 @@ test checks that the contract is not vacuous: an upward import (a numerical modu
 the planner) is reported as broken.
 """
 
+import ast
 import os
 import subprocess
 import sys
@@ -88,3 +89,58 @@ def test_no_module_exceeds_600_lines():
     assert len(lines) > 20
     too_long = {name: n for name, n in lines.items() if n > 600}
     assert not too_long, too_long
+
+
+def _notebook_sources():
+    import json
+
+    for path in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        cells = json.loads(path.read_text())["cells"]
+        code = "\n".join(
+            "".join(line for line in c["source"] if not line.lstrip().startswith(("%", "!")))
+            for c in cells
+            if c["cell_type"] == "code"
+        )
+        yield path.name, code
+
+
+def private_uses(code: str) -> list[str]:
+    """Leading-underscore names a piece of code takes from segplan: imported
+    (``from segplan.x import _y``) or reached through an imported segplan name
+    (``segplan.x._y``, ``mod._y`` after ``from segplan import mod``)."""
+    tree = ast.parse(code)
+    bound = set()  # local names bound to segplan modules or objects
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.split(".")[0] == "segplan":
+                    bound.add((a.asname or a.name).split(".")[0])
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "segplan":
+            for a in node.names:
+                if a.name.startswith("_"):
+                    found.append(f"from {node.module} import {a.name}")
+                bound.add(a.asname or a.name)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__"):
+            root = node.value
+            while isinstance(root, ast.Attribute):
+                root = root.value
+            if isinstance(root, ast.Name) and root.id in bound:
+                found.append(ast.unparse(node))
+    return found
+
+
+def test_private_use_detector_finds_both_forms():
+    code = (
+        "import segplan\nfrom segplan import frame as fr\nfrom segplan.cost import _x\n"
+        "fr._y\nsegplan.pose._z\n"
+    )
+    assert private_uses(code) == ["from segplan.cost import _x", "fr._y", "segplan.pose._z"]
+    assert private_uses("import numpy as np\nnp._NoValue\nfrom segplan import plan\n") == []
+
+
+def test_notebooks_use_no_private_segplan_name():
+    """Notebooks may study a module's exported names, never a leading-underscore one (issue 11)."""
+    bad = {name: uses for name, code in _notebook_sources() if (uses := private_uses(code))}
+    assert not bad, bad
