@@ -300,6 +300,7 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     obstacle or beyond a wall, not free. Otherwise the package's certified test (walls by
     :meth:`~segplan.expansion.Workspace.in_bounds`, then
     :meth:`~segplan.expansion.Workspace.colliding` on the obstacles near the points).
+    ``u`` may be a function without arguments that returns the union (called only then).
     """
     near = obstacles_near(ws, pts, 1.01 * delta + 1e-9)
     if screen:
@@ -323,6 +324,8 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
             lb = min(lb, w)
         if lb > delta:
             return True, 0
+    if callable(u):  # made only now: most unions are decided by the screen
+        u = u()
     return ws.in_bounds(u) and not ws.colliding(u, only=near), 1
 
 
