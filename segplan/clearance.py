@@ -136,6 +136,9 @@ class ClearanceGrid:
         lower[occ] = -1.0
         self.lower, self.blocked = lower, blocked
         self.lower_flat, self.blocked_flat = lower.ravel(), blocked.ravel()
+        #: ``lower`` with ``-inf`` in the blocked cells (every other value is finite): one
+        #: gather and one minimum answer both of the lattice's questions about a primitive
+        self.lower_blocked_flat = np.where(blocked, -math.inf, lower).ravel()
 
     def _inside_walls(self, cx, cy, bounds, d: float) -> np.ndarray:
         """Cells whose centre lies more than ``d`` inside every wall (lattice-frame centres

@@ -221,7 +221,7 @@ class _LatticeSearch(GoalApproaches):
         self.best, best_d = start, math.hypot(gx, gy)
         reason = "exhausted"
         heap, r, q, grid = self.heap, self.r, self.q, self.grid
-        lower, blocked = grid.lower_flat, grid.blocked_flat
+        lower = grid.lower_blocked_flat
         stop_at = math.inf  # set when the goal looks enclosed
         h_known: dict = {}
         while heap:
@@ -259,8 +259,9 @@ class _LatticeSearch(GoalApproaches):
             if b is None:
                 continue  # at the edge of the grid (no walls): the lattice ends there
             idx = self.offsets[h] + b
-            free = lower[idx].min(axis=1) > self.delta[h]
-            bad = blocked[idx].any(axis=1)
+            least = lower[idx].min(axis=1)
+            free = least > self.delta[h]
+            bad = least == -math.inf  # a blocked cell
             for m, (di, dj, h1) in enumerate(self.step[h]):
                 if bad[m]:
                     continue
