@@ -154,7 +154,7 @@ class GoalApproaches:
                     # the primitive's finer points (as the forward search uses): a tighter
                     # screen, so fewer certified tests
                     fp, fd = self.fine[h0]
-                    u = self.approach_union(prev, key, h0, m)
+                    u = lambda prev=prev, key=key, h0=h0, m=m: self.approach_union(prev, key, h0, m)  # noqa: E731
                     world = (fp[m] @ rot.T + base[k]) @ grid.rot.T + (self.start.x, self.start.y)
                     if not self.certified(u, world, fd[m] + 1e-9):
                         continue

@@ -136,6 +136,9 @@ class ClearanceGrid:
         lower[occ] = -1.0
         self.lower, self.blocked = lower, blocked
         self.lower_flat, self.blocked_flat = lower.ravel(), blocked.ravel()
+        #: ``lower`` with ``-inf`` in the blocked cells (every other value is finite): one
+        #: gather and one minimum answer both of the lattice's questions about a primitive
+        self.lower_blocked_flat = np.where(blocked, -math.inf, lower).ravel()
 
     def _inside_walls(self, cx, cy, bounds, d: float) -> np.ndarray:
         """Cells whose centre lies more than ``d`` inside every wall (lattice-frame centres
@@ -275,14 +278,20 @@ def union_points(u) -> tuple[np.ndarray, float]:
 
 def obstacles_near(ws, pts: np.ndarray, margin: float) -> list[int]:
     """Obstacles of workspace ``ws`` whose bounding box meets that of points ``pts`` grown by ``margin``."""
-    bb = ws.box_array
-    if not len(bb):
+    if not len(ws.box_array):
         return []
     # column by column: numpy's reductions along axis 0 of an (n, 2) array are several
     # times slower than over a contiguous column
     x, y = pts[:, 0], pts[:, 1]
-    x0, x1 = float(x.min()) - margin, float(x.max()) + margin
-    y0, y1 = float(y.min()) - margin, float(y.max()) + margin
+    return _boxes_meeting(ws, float(x.min()), float(y.min()), float(x.max()), float(y.max()), margin)
+
+
+def _boxes_meeting(ws, x0: float, y0: float, x1: float, y1: float, margin: float) -> list[int]:
+    """Obstacles of ``ws`` whose bounding box meets the box ``(x0, y0, x1, y1)`` grown by ``margin``."""
+    bb = ws.box_array
+    if not len(bb):
+        return []
+    x0, x1, y0, y1 = x0 - margin, x1 + margin, y0 - margin, y1 + margin
     if len(bb) <= 32:  # a few obstacles: Python floats beat numpy's per-call overhead
         return [k for k, b in enumerate(ws.boxes) if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0]
     hit = (bb[:, 0] <= x1) & (bb[:, 2] >= x0) & (bb[:, 1] <= y1) & (bb[:, 3] >= y0)
@@ -300,11 +309,14 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     obstacle or beyond a wall, not free. Otherwise the package's certified test (walls by
     :meth:`~segplan.expansion.Workspace.in_bounds`, then
     :meth:`~segplan.expansion.Workspace.colliding` on the obstacles near the points).
+    ``u`` may be a function without arguments that returns the union (called only then).
     """
-    near = obstacles_near(ws, pts, 1.01 * delta + 1e-9)
+    rows = np.ascontiguousarray(pts.T)  # (2, n): the reductions below run along rows
+    x, y = rows
+    xlo, xhi, ylo, yhi = float(x.min()), float(x.max()), float(y.min()), float(y.max())
+    near = _boxes_meeting(ws, xlo, ylo, xhi, yhi, 1.01 * delta + 1e-9)  # as obstacles_near
     if screen:
         lb = math.inf
-        rows = np.ascontiguousarray(pts.T)  # (2, n): the reductions below run along rows
         for k in near:
             poly = ws.convex[k]
             sd = poly.normals @ rows
@@ -315,14 +327,15 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
             lb = min(lb, m)
         b = ws.bounds
         if b is not None:
-            x, y = rows
-            w = min(float(x.min()) - b[0], b[2] - float(x.max()))
-            w = min(w, float(y.min()) - b[1], b[3] - float(y.max()))
+            w = min(xlo - b[0], b[2] - xhi)
+            w = min(w, ylo - b[1], b[3] - yhi)
             if w <= 0.0:
                 return False, 0
             lb = min(lb, w)
         if lb > delta:
             return True, 0
+    if callable(u):  # made only now: most unions are decided by the screen
+        u = u()
     return ws.in_bounds(u) and not ws.colliding(u, only=near), 1
 
 

@@ -149,8 +149,9 @@ class _LatticeSearch(GoalApproaches):
         psi = math.atan2(P1.y - P0.y, P1.x - P0.x)
         return Union.from_intrinsic(P0, P1, p.alpha, self.L, p.d, psi, p.phi0, p.phi1)
 
-    def certified(self, u: Union, pts: np.ndarray, delta: float | None = None) -> bool:
-        """:func:`segplan.clearance.union_free_near` (counts the certified tests)."""
+    def certified(self, u, pts: np.ndarray, delta: float | None = None) -> bool:
+        """:func:`segplan.clearance.union_free_near` (counts the certified tests); ``u`` a
+        :class:`~segplan.union.Union` or a function making it (made only if the screen cannot decide)."""
         free, certified = union_free_near(
             self.ws, u, pts, self.L if delta is None else delta, delta is not None
         )
@@ -220,8 +221,9 @@ class _LatticeSearch(GoalApproaches):
         self.best, best_d = start, math.hypot(gx, gy)
         reason = "exhausted"
         heap, r, q, grid = self.heap, self.r, self.q, self.grid
-        lower, blocked = grid.lower_flat, grid.blocked_flat
+        lower = grid.lower_blocked_flat
         stop_at = math.inf  # set when the goal looks enclosed
+        h_known: dict = {}
         while heap:
             if expanded >= max_expansions:
                 reason = "expansions"
@@ -257,8 +259,9 @@ class _LatticeSearch(GoalApproaches):
             if b is None:
                 continue  # at the edge of the grid (no walls): the lattice ends there
             idx = self.offsets[h] + b
-            free = lower[idx].min(axis=1) > self.delta[h]
-            bad = blocked[idx].any(axis=1)
+            least = lower[idx].min(axis=1)
+            free = least > self.delta[h]
+            bad = least == -math.inf  # a blocked cell
             for m, (di, dj, h1) in enumerate(self.step[h]):
                 if bad[m]:
                     continue
@@ -270,14 +273,17 @@ class _LatticeSearch(GoalApproaches):
                     continue
                 if (key, m) in self.banned:
                     continue
-                hs = self.h((i + di) * r, (j + dj) * r, _ANGLES[h1])
+                hs = h_known.get(nk)
+                if hs is None:  # h' of a state is the same from every parent: computed once
+                    hs = h_known[nk] = self.h((i + di) * r, (j + dj) * r, _ANGLES[h1])
                 if hs == math.inf:
                     continue  # the goal's region cannot be reached from there
                 if not free[m]:
                     P = P or self.pose(key)
                     fp, fd = self.fine[h]
                     world = (fp[m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
-                    if not self.certified(self.union(key, m, P), world, fd[m] + 1e-9):
+                    make = lambda key=key, m=m, P=P: self.union(key, m, P)  # noqa: E731
+                    if not self.certified(make, world, fd[m] + 1e-9):
                         continue
                 self.g[nk] = ng
                 self.parent[nk] = (key, m)
