@@ -1,5 +1,7 @@
-"""Shared test configuration: deterministic hypothesis runs, no deadlines (CI machines vary)."""
+"""Shared test configuration: deterministic hypothesis runs, no deadlines (CI machines vary);
+the refits of the stored data, computed once per session for the modules that read them."""
 
+import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -10,3 +12,21 @@ settings.register_profile(
     print_blob=True,
 )
 settings.load_profile("segplan")
+
+
+@pytest.fixture(scope="session")
+def refit():
+    """``segplan.fit.store.compute()``: the fits of the stored constants (about 1 s of CPU),
+    for test_constants (compared with the stored file, and fed to ``--check``)."""
+    from segplan.fit.store import compute
+
+    return compute()
+
+
+@pytest.fixture(scope="session")
+def recomputed():
+    """``segplan.fit.store.compute_primitives()``: the stored default primitives recomputed
+    (about 1 s of CPU), for test_primitives_data and test_constants' ``--check``. Read only."""
+    from segplan.fit.store import compute_primitives
+
+    return compute_primitives()

@@ -19,19 +19,15 @@ import pytest
 import segplan
 from segplan import constants
 from segplan.cost import APPROX_DOMAIN, K_COEF, S2_CAP, k_alpha, longd_approx_intrinsic
-from segplan.fit.store import RTOL, compute, differences, main
+from segplan.fit import store
+from segplan.fit.store import RTOL, compute, compute_primitives, differences, main
 from segplan.frame import heuristic_alpha, heuristic_coefficients
 from segplan.pose import intrinsic
 
 DEG = math.pi / 180.0
 
 
-# -- the stored data equal a refit -----------------------------------------------------
-@pytest.fixture(scope="module")
-def refit():
-    return compute()
-
-
+# -- the stored data equal a refit (fixture refit: conftest) ---------------------------
 def test_refit_equals_the_stored_constants(refit):
     # tolerance: RTOL = 1e-9 relative on every number (the fits are deterministic; on the
     # machine that wrote the file they agree to the last bit); integers and lists exactly
@@ -46,9 +42,15 @@ def test_differences_sees_a_change(refit):
     ]
 
 
-def test_check_command_passes_on_the_stored_file(capsys):
+def test_check_command_passes_on_the_stored_file(capsys, monkeypatch, refit, recomputed):
+    # the fits main() would compute are the session's (the same deterministic functions,
+    # each compared with the stored data above and in test_primitives_data): not twice
+    assert store.compute is compute and store.compute_primitives is compute_primitives
+    monkeypatch.setattr(store, "compute", lambda: refit)
+    monkeypatch.setattr(store, "compute_primitives", lambda: recomputed)
     assert main(["--check"]) == 0
-    assert "matches the fits" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "matches the fits" in out and "matches the computed primitives" in out
 
 
 def test_provenance_is_recorded():

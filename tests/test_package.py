@@ -128,15 +128,6 @@ def _offline_build_possible() -> bool:
     return True
 
 
-def _pip_can_target_another_python() -> bool:
-    try:
-        from importlib.metadata import version
-
-        return tuple(int(p) for p in version("pip").split(".")[:2]) >= (22, 3)
-    except Exception:  # no pip here, or an unusual version string
-        return False
-
-
 @pytest.mark.skipif(
     not _offline_build_possible(), reason="python -m build (package 'build') is not installed"
 )
@@ -161,18 +152,19 @@ def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
         assert "segplan/scenarios/fig5_example1.json" in zf.namelist()
         assert "segplan/scenarios/beyond_the_paper/l_shaped_rack.json" in zf.namelist()
     env_dir = tmp_path / "venv"
-    # pip of this environment installs into the new venv (``pip --python``, pip >= 22.3): no
-    # pip bootstrapped into it (ensurepip took ~8 s of CPU); else a venv with its own pip
-    outer_pip = _pip_can_target_another_python()
-    venv.EnvBuilder(with_pip=not outer_pip).create(env_dir)
-    py = env_dir / "bin" / "python"
-    site = subprocess.run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-                          capture_output=True, text=True, check=True).stdout.strip()  # fmt: skip
     # the dependencies (numpy, scipy, ...) from this environment, without its own segplan
     # (a plain path line: the .pth files there, e.g. an editable segplan, are not processed)
     deps = [p for p in sys.path if p.endswith("site-packages") and Path(p, "numpy").is_dir()]
+    # this environment's pip, seen through those paths, runs in the new venv's interpreter and
+    # installs into it: no pip bootstrapped there (ensurepip took ~8 s of CPU), one pip
+    # start-up (``pip --python`` starts pip twice, ~1 s); else a venv with its own pip
+    pip_here = any(Path(p, "pip").is_dir() for p in deps)
+    venv.EnvBuilder(with_pip=not pip_here).create(env_dir)
+    py = env_dir / "bin" / "python"
+    site = subprocess.run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          capture_output=True, text=True, check=True).stdout.strip()  # fmt: skip
     Path(site, "deps-from-test-env.pth").write_text("\n".join(deps) + "\n")
-    pip = [sys.executable, "-m", "pip", "--python", str(py)] if outer_pip else [py, "-m", "pip"]
+    pip = [py, "-m", "pip"]
     subprocess.run([*pip, "install", "-q", "--no-index", "--no-deps", str(wheel)],
                    capture_output=True, text=True, timeout=300, check=True)  # fmt: skip
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
@@ -183,11 +175,16 @@ def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
     assert run.returncode == 0, run.stderr[-2000:]
     out = json.loads(run.stdout)
     assert out["found"] is True and out["scenario"] == "fig5_example1"
-    where = subprocess.run([py, "-c", "import segplan; print(segplan.__file__)"], capture_output=True,
-                           text=True, cwd=tmp_path, env=env, check=True).stdout  # fmt: skip
-    assert where.startswith(site), where  # the installed copy, not this tree
+    # the installed copy runs (not this tree), and plans a scenario from the package's
+    # beyond_the_paper folder: one interpreter for both (each start-up imports segplan, ~1 s)
+    code = (
+        "import sys, segplan, segplan.cli; print(segplan.__file__); "
+        "sys.exit(segplan.cli.main(['plan', 'l_shaped_rack', '--json']))"
+    )
     rack = subprocess.run(
-        [env_dir / "bin" / "segplan", "plan", "l_shaped_rack", "--json"],
-        capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300, check=False,
-    )  # fmt: skip
-    assert rack.returncode == 0 and json.loads(rack.stdout)["found"] is True, rack.stderr[-2000:]
+        [py, "-c", code], capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300, check=False
+    )
+    assert rack.returncode == 0, rack.stderr[-2000:]
+    where, _, rack_json = rack.stdout.partition("\n")
+    assert where.startswith(site), where  # the installed copy, not this tree
+    assert json.loads(rack_json)["found"] is True

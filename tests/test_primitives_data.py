@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from segplan import primitives
-from segplan.fit.store import compute_primitives, primitive_differences
+from segplan.fit.store import primitive_differences
 from segplan.primitives import (
     STORED_CELLS,
     STORED_STEER,
@@ -17,11 +17,6 @@ from segplan.primitives import (
 )
 
 DEG = math.pi / 180.0
-
-
-@pytest.fixture(scope="module")
-def recomputed():
-    return compute_primitives()
 
 
 def test_stored_primitives_equal_a_recomputation(recomputed):

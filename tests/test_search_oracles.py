@@ -137,6 +137,24 @@ def load(name):
     return segplan.load_scenario(SCENARIOS / f"{name}.json")
 
 
+@pytest.fixture(scope="module")
+def shipped():
+    """``shipped(name, **kwargs)``: ``run_recorded`` on a shipped scenario, each search run once
+    per module (several tests below read the same search; recording does not change it).
+
+    A fixture, not a module-level cache: every pytest session (e.g. each mutant's run in
+    benchmarks/mutation.py, which may reuse the imported module) searches afresh."""
+    runs = {}
+
+    def run(name, **kwargs):
+        key = (name, tuple(sorted(kwargs.items())))
+        if key not in runs:
+            runs[key] = run_recorded(load(name), **kwargs)
+        return runs[key]
+
+    return run
+
+
 # -- consistent h': A* is optimal on its graph ---------------------------------------------
 @pytest.mark.parametrize("name", NAMES)
 @pytest.mark.parametrize(
@@ -148,8 +166,8 @@ def load(name):
     ],
     ids=["b", "distance-a", "distance-c"],
 )
-def test_astar_is_optimal_on_the_graph_it_generated(name, kwargs):
-    found, edges, expanded = run_recorded(load(name), **kwargs)
+def test_astar_is_optimal_on_the_graph_it_generated(name, kwargs, shipped):
+    found, edges, expanded = shipped(name, **kwargs)
     check_optimal_on_recorded_graph(found, edges, expanded)
 
 
@@ -177,23 +195,23 @@ def test_exact_alpha_method_search_is_valid_and_optimal():
     assert found.nodes[0] == heuristic.nodes[0] and found.nodes[-1] == heuristic.nodes[-1]
 
 
-def test_inadmissible_heuristic_may_be_dearer_but_is_on_its_graph():
+def test_inadmissible_heuristic_may_be_dearer_but_is_on_its_graph(shipped):
     """h' (a) is not admissible: its plan may cost more than (b)'s; its path is still in its graph."""
     for name in NAMES:
-        found, edges, expanded = run_recorded(load(name), heuristic="a")
+        found, edges, expanded = shipped(name, heuristic="a")
         assert max(expanded.values()) == 1
         assert dijkstra(edges, 1) <= found.search_cost * (1 + 1e-9)
         # observed on every shipped scenario: (a)'s greed never found a cheaper plan than (b)
-        assert found.search_cost >= paper_search(load(name), heuristic="b").search_cost * (1 - 1e-9)
+        assert found.search_cost >= shipped(name, heuristic="b")[0].search_cost * (1 - 1e-9)
 
 
 # -- h' (b) against uniform cost -----------------------------------------------------------
 @pytest.mark.parametrize("name", NAMES)
-def test_heuristic_b_no_dearer_than_uniform_cost(name):
+def test_heuristic_b_no_dearer_than_uniform_cost(name, shipped):
     sc = load(name)
     with uniform_cost():
         ucs = paper_search(sc, heuristic="b")
-    found = paper_search(sc, heuristic="b")
+    found = shipped(name, heuristic="b")[0]
     assert found.search_cost <= ucs.search_cost * (1 + 1e-9)
     # h' (b) is informed: never more expansions than the uninformed search
     assert found.expanded <= ucs.expanded
@@ -235,16 +253,16 @@ def test_every_shipped_scenario_is_pinned():
 
 
 @pytest.mark.parametrize("name, heuristic", sorted(PINS))
-def test_shipped_scenarios_pinned(name, heuristic):
+def test_shipped_scenarios_pinned(name, heuristic, shipped):
     cost, expanded, generated = PINS[name, heuristic]
-    found = paper_search(load(name), heuristic=heuristic)
+    found = shipped(name, heuristic=heuristic)[0]
     assert found.cost == pytest.approx(cost, rel=1e-6)
     assert (found.expanded, found.generated) == (expanded, generated)
 
 
-def test_collision_counters_pinned():
+def test_collision_counters_pinned(shipped):
     """The search's collision counters on Fig. 6 (h' a): deterministic, so pinned (same reason)."""
-    found = paper_search(load("fig6_example2"), heuristic="a")
+    found = shipped("fig6_example2", heuristic="a")[0]
     assert (found.collision_checks, found.exact_checks) == COUNTERS
 
 

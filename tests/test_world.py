@@ -326,11 +326,18 @@ def test_turn_around_goal_opposes_start():
     assert abs(abs(sc.goal.theta - sc.start.theta) - math.pi) < 1e-12
 
 
+@pytest.fixture(scope="module")
+def fig5():
+    """Fig. 5's scenario, loaded once for the examples below (~6 ms a load; read only). A
+    fixture, not a module constant: each pytest session (each mutant's run) loads it afresh."""
+    return load_scenario(SCENARIOS / "fig5_example1.json")
+
+
 @settings(max_examples=150)
 @given(st.integers(0, 10**6), st.floats(-math.pi, math.pi), st.floats(0, 1), st.floats(0, 1))
-def test_is_free_against_shapely_distance(seed, th, u, v):
+def test_is_free_against_shapely_distance(fig5, seed, th, u, v):
     """Collision iff the segment comes within half_width of a raw obstacle, up to the excess."""
-    sc = load_scenario(SCENARIOS / "fig5_example1.json")
+    sc = fig5
     x0, y0, x1, y1 = sc.free_bounds
     pose = (x0 + 1.5 + u * (x1 - x0 - 3), y0 + 1.5 + v * (y1 - y0 - 3), th)
     a, b = pose_segment(pose, sc.L)
