@@ -28,7 +28,7 @@ from .expansion import Expander
 from .frame import heuristic_coefficients
 from .lattice import LATTICE_MAX_EXPANSIONS, lattice_search
 from .links import LinkModel
-from .path import NoPathError, Plan, check_limits, check_option
+from .path import PLAN_RTOL, NoPathError, Plan, check_limits, check_option
 from .problem import COSTS, HEURISTICS, Problem, characteristic_dimension
 from .refine import refine_with
 from .search import astar
@@ -364,7 +364,8 @@ def _plan(
         # LONGD [1] of each union (Romberg, rtol 1e-8)
         exact = 0.0
         for u in unions:
-            exact += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=1e-8))
+            geo = checked_intrinsic(u.p0, u.p1, u.alpha, u.L)
+            exact += float(longd_exact_intrinsic(*geo, rtol=PLAN_RTOL))
         st = ex.stats
         return Plan(
             nodes=nodes,

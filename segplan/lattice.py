@@ -74,11 +74,10 @@ import numpy as np
 
 from .approach import GOAL, GoalApproaches
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions, union_free_near, union_points
-from .cost import longd_exact_intrinsic
 from .dubins import dubins_length_scalar
 from .frame import heuristic_coefficients
 from .links import LinkModel
-from .path import NoPathError, Plan, check_limits, check_option
+from .path import NoPathError, Plan, check_limits, check_option, union_longd, unions_longd
 from .pose import Pose
 from .primitives import fine_points, heading_angles, heading_tables, max_reach, primitive_set
 from .shortcut import shortcut_plan
@@ -315,7 +314,7 @@ class _LatticeSearch(GoalApproaches):
         for k, u in enumerate(final or []):
             unions.append(u)
             nodes.append(u.p1)
-            cost += float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8))
+            cost += union_longd(u)
             kinds.append("goal" if k == len(final) - 1 else "approach")
         st = self.ws.stats
         return Plan(
@@ -356,7 +355,7 @@ def _direct_plan(ws, start, u, t0):
     """The plan of one free union (or none: the start is the goal)."""
 
     unions = () if u is None else (u,)
-    cost = sum(float(longd_exact_intrinsic(v.d, v.phi0, v.phi1, v.alpha, v.L, rtol=1e-8)) for v in unions)
+    cost = unions_longd(unions)
     return Plan(
         nodes=(start,) + tuple(v.p1 for v in unions),
         unions=unions,

@@ -10,9 +10,35 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
-__all__ = ["NoPathError", "Plan", "Refinement", "check_limits", "check_option"]
+from .cost import longd_exact_intrinsic
+
+__all__ = [
+    "PLAN_RTOL",
+    "NoPathError",
+    "Plan",
+    "Refinement",
+    "check_limits",
+    "check_option",
+    "union_longd",
+    "unions_longd",
+]
+
+#: Relative tolerance of the Romberg integration [1] behind a returned plan's ``cost``.
+PLAN_RTOL = 1e-8
+
+
+def union_longd(u) -> float:
+    """LONGD of one union by formula [1] (Romberg to :data:`PLAN_RTOL`), from the union's
+    own intrinsic parameters (``u.d``, ``u.phi0``, ``u.phi1``, ``u.alpha``, ``u.L``)."""
+    return float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=PLAN_RTOL))
+
+
+def unions_longd(unions: Iterable) -> float:
+    """A chain's LONGD: the sum of :func:`union_longd` over ``unions`` (0 for none)."""
+    return sum(union_longd(u) for u in unions)
 
 
 def check_option(

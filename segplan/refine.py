@@ -42,7 +42,7 @@ import numpy as np
 from .cost import checked_intrinsic, longd_exact_intrinsic, longd_gauss_intrinsic
 from .frame import heuristic_alpha
 from .links import ALPHA_MARGIN, LinkModel
-from .path import Plan, Refinement
+from .path import PLAN_RTOL, Plan, Refinement
 from .pose import Pose, alpha_interval, wrap
 from .union import cubic_coefficients
 from .validity import Workspace
@@ -193,7 +193,7 @@ def refine_with(
     unions = tuple(r.known[(a, b)][0] for a, b in zip(nodes[:-1], nodes[1:], strict=True))
     cost = 0.0
     for u in unions:
-        cost += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=1e-8))
+        cost += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=PLAN_RTOL))
     if not cost < plan.cost:  # not shorter by [1]: keep the search's chain
         nodes, kinds, unions, cost = list(plan.nodes), list(plan.kinds), plan.unions, plan.cost
     seconds = time.perf_counter() - t0

@@ -12,9 +12,8 @@ import dataclasses
 import time
 
 from .clearance import ClearanceGrid, union_free_near, union_points
-from .cost import longd_exact_intrinsic
 from .links import LinkModel
-from .path import Plan
+from .path import Plan, unions_longd
 
 __all__ = ["SHORTCUT_WINDOW", "shortcut_plan"]
 
@@ -58,7 +57,7 @@ def shortcut_plan(plan: Plan, ex: LinkModel, grid: ClearanceGrid, t0: float) -> 
         out_u.append(u)
         out_k.append(kinds[j])
         i = j
-    total = sum(float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=1e-8)) for u in out_u)
+    total = unions_longd(out_u)
     if not total <= plan.cost or not all(ex.ws.union_free(u) for u in new):  # the certified test
         return plan
     return dataclasses.replace(

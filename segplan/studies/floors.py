@@ -52,6 +52,7 @@ import numpy as np
 
 from ..floors import place_disjoint
 from ..geometry import enlarge_polygon, pose_collides, pose_in_bounds
+from ..pose import wrap_scalar
 from ..world import Robot, Scenario, load_scenario, make_scenario
 
 __all__ = [
@@ -180,10 +181,6 @@ def _heading(rng: np.random.Generator, kind: str, direction: float) -> float:
     return direction + rng.uniform(-NATURAL_SPREAD, NATURAL_SPREAD)
 
 
-def _wrap(theta: float) -> float:
-    return round((theta + math.pi) % (2.0 * math.pi) - math.pi, _DIGITS)
-
-
 def _start_goal(rng, free, kind: str, start_x, goal_x, ylim) -> tuple[tuple, tuple]:
     """Free start and goal: A uniform in the given x ranges and ``ylim``, at least
     :data:`MIN_DISTANCE` apart, headings of ``kind``."""
@@ -193,8 +190,8 @@ def _start_goal(rng, free, kind: str, start_x, goal_x, ylim) -> tuple[tuple, tup
         if math.dist(a, b) < MIN_DISTANCE:
             continue
         direction = math.atan2(b[1] - a[1], b[0] - a[0])
-        s = (float(a[0]), float(a[1]), _wrap(_heading(rng, kind, direction)))
-        g = (float(b[0]), float(b[1]), _wrap(_heading(rng, kind, direction)))
+        s = (float(a[0]), float(a[1]), round(wrap_scalar(_heading(rng, kind, direction)), _DIGITS))
+        g = (float(b[0]), float(b[1]), round(wrap_scalar(_heading(rng, kind, direction)), _DIGITS))
         if free(s) and free(g):
             return s, g
     raise ValueError("no free start and goal found")  # pragma: no cover
