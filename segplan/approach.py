@@ -6,7 +6,17 @@ lattice state. :class:`GoalApproaches` grows a small tree backwards from the goa
 lattice in the goal's own frame, whose states reach the goal exactly by chains of
 primitives (every edge screened on the clearance grid and, where unsure, checked by the
 certified test). Expanded states near the goal then try unions to the most promising of
-these *approach states*.
+these *approach states* (``g`` + Dubins length + the approach's cost), and a success
+puts the goal in the open list with the whole chain.
+
+**A goal that looks enclosed** (:meth:`GoalApproaches.enclosed`): after
+:data:`ENCLOSURE_AFTER` expansions without a plan the tree is grown to
+:data:`ENCLOSURE_LIMIT` states (4 times as many at half the cell); if it runs out of
+states first and no free union joins the start to one of them, the goal can be reached
+neither by that lattice's primitives nor by a union from the start. A union from a state
+of the start's lattice might still reach it, so this is no proof: the search goes on for
+:data:`ENCLOSED_EXPANSIONS` expansions, then stops with ``reason="expansions"`` and says
+why. A goal a few decimetres in front of a wall, facing away from it, looks so (and is).
 """
 
 from __future__ import annotations
@@ -22,7 +32,14 @@ from .pose import Pose
 from .primitives import heading_angles
 from .union import Union, cubic_coefficients
 
-__all__ = ["APPROACH_CANDIDATES", "GoalApproaches", "steerable"]
+__all__ = [
+    "APPROACH_CANDIDATES",
+    "ENCLOSED_EXPANSIONS",
+    "ENCLOSURE_AFTER",
+    "ENCLOSURE_LIMIT",
+    "GoalApproaches",
+    "steerable",
+]
 
 _ANGLES = heading_angles()
 GOAL = ("goal",)
@@ -30,6 +47,15 @@ GOAL = ("goal",)
 #: Approach states, the most promising first, that :meth:`GoalApproaches.try_approaches`
 #: screens by :func:`steerable` before it builds a union to the first ``tries`` that pass.
 APPROACH_CANDIDATES = 8
+#: Expansions without a plan after which the goal's enclosure test runs (see
+#: :meth:`GoalApproaches.enclosed`), and the approach states it grows to (at ``L / 8``; times
+#: 4 per halving of the resolution).
+ENCLOSURE_AFTER = 256
+ENCLOSURE_LIMIT = 300
+#: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
+#: the start's lattice may still reach it: not a proof), before it stops.
+ENCLOSED_EXPANSIONS = 512
+
 #: Frames sampled per pose pair by :func:`steerable`, abscissae (fractions of the span).
 _FRAMES = (np.arange(1, 8) / 8.0)[None, :, None]
 _TAU = np.linspace(0.0, 1.0, 17)[None, None, :]
@@ -240,3 +266,27 @@ class GoalApproaches:
             self.goal_g = total
             self.goal_parent = (key, [u] + self.approach_chain(self.approach_keys[k]))
             heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
+
+    def enclosed(self, expanded: int) -> bool:
+        """Grow the goal's approach tree when due; True if the goal looks enclosed.
+
+        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions
+        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER`. If it runs
+        out of states first, it holds every state of the goal's lattice that reaches the
+        goal by primitives; if no union joins the start to any of them
+        (:meth:`start_joins`), no plan made of a union and such primitives exists. A union
+        from a state of the start's lattice may still reach the goal (not a proof): the
+        search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
+        """
+        if self.approach_keys is None and expanded >= self.approach_after:
+            self.build_approaches(self.approach_budget, self.approach_limit)
+        elif (
+            self.approach_keys is not None
+            and not self.approach_exhausted
+            and expanded >= ENCLOSURE_AFTER
+            and len(self.approach_keys) < self.enclosure_limit
+        ):
+            self.grow_approaches(self.enclosure_limit)
+        else:
+            return False
+        return self.approach_exhausted and not self.start_joins()

@@ -18,20 +18,18 @@ shape of Hybrid A* (Dolgov et al. 2008):
   :class:`segplan.links.LinkModel`); if it is free and within the steering limit, the
   goal enters the open list with ``g + LONGD``. The search ends when the goal is taken
   from the open list.
-* **Goal region**: the goal need not be on the lattice, and a goal in a pocket may admit
-  no direct union from any lattice state. After a few expansions without a way to the
-  goal, a small tree of *approach states* is grown backwards from the goal (a lattice in
-  the goal's own frame, the primitives run backwards, every edge checked); expanded
-  states near the goal then try unions to the most promising approach states
-  (``g`` + Dubins length + the approach's cost), and a success puts the goal in the open
-  list with the whole chain.
+* **Goal region**: a goal in a pocket may admit no direct union from any lattice state:
+  the goal's approach tree and its enclosure test (:mod:`segplan.approach`).
 * **h'** is ``weight`` times the larger of two lower bounds of LONGD: the Dubins length
   of the rear point to the goal with radius ``R`` (:func:`segplan.dubins.dubins_length`)
   and a distance over the free cells of a coarse grid (:class:`DistanceField`: it knows
   the obstacles, so dead ends do not trap the search; a state from which the goal's
   region cannot be reached at all is dropped). With ``weight = 1`` the plan is the
   cheapest over the lattice and the final unions; the default ``weight = 2`` trades
-  length (which the refinement wins back in part) for far fewer expansions.
+  length (which the refinement wins back in part) for far fewer expansions. After
+  :data:`segplan.costtogo.GUIDE_AFTER` expansions without a plan (a loop around
+  obstacles, which neither bound sees), the coarse lattice's cost-to-go joins them
+  (:mod:`segplan.costtogo`) with a smaller weight.
 * **Collision**: a per-plan grid of lower bounds of the distance to the enlarged
   obstacles and walls (a conservative rasterisation and a Euclidean distance transform,
   :class:`ClearanceGrid`, laid out in the lattice's frame so that the cells of a
@@ -49,15 +47,10 @@ shape of Hybrid A* (Dolgov et al. 2008):
   tries once more at half the cell size. Before searching, the grid's free cells
   (8-connected) must join the start's rear point to the goal's: if they do not, no path
   exists at all and the error comes at once (an enclosed goal).
-* **A goal that looks enclosed**: the goal's approach tree is a backward search over the
-  lattice laid out in the goal's frame. After :data:`ENCLOSURE_AFTER` expansions without
-  a plan it is grown to :data:`ENCLOSURE_LIMIT` states (4 times as many at half the
-  cell); if it runs out of states first and no free union joins the start to one of
-  them, the goal can be reached neither by that lattice's primitives nor by a union
-  from the start. A union from a state of the start's lattice might still reach it, so
-  this is no proof: the search goes on for :data:`ENCLOSED_EXPANSIONS` expansions, then
-  stops with ``reason="expansions"`` and says why. A goal a few decimetres in front of a
-  wall, facing away from it, looks so (and is).
+* **Tight corners** (:mod:`segplan.escape`): when the lattice runs out of states (or the
+  goal looks enclosed), the search runs again from the ends of tight arcs of short unions
+  out of the start and into the goal, which turn closer to ``R`` than any primitive; a
+  plan far above the Dubins length tries the direct union between such arcs' ends.
 
 :func:`plan_lattice` returns a :class:`segplan.search.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines
@@ -72,9 +65,11 @@ import time
 
 import numpy as np
 
-from .approach import GOAL, GoalApproaches
+from .approach import ENCLOSED_EXPANSIONS, ENCLOSURE_AFTER, ENCLOSURE_LIMIT, GOAL, GoalApproaches
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions, union_free_near, union_points
+from .costtogo import GUIDE_AFTER, Guided
 from .dubins import dubins_length_scalar
+from .escape import escape_search, improve_with_arcs
 from .frame import heuristic_coefficients
 from .links import LinkModel
 from .path import NoPathError, Plan, check_limits, check_option, union_longd, unions_longd
@@ -98,13 +93,13 @@ __all__ = [
 _ANGLES = heading_angles()
 
 
-class _LatticeSearch(GoalApproaches):
+class _LatticeSearch(GoalApproaches, Guided):
     """A* over the lattice laid out in the start's frame (module docstring)."""
 
     def __init__(
         self, scenario, ws, ex, grid, field, resolution, weight, analytic_every, goal_radius, banned
     ):
-        robot = scenario.robot
+        self.robot = robot = scenario.robot
         self.ws, self.ex, self.grid, self.field = ws, ex, grid, field
         self.L, self.R = robot.L, robot.min_turning_radius
         self.r = r = float(resolution)
@@ -157,11 +152,13 @@ class _LatticeSearch(GoalApproaches):
         self.certified_calls += certified
         return free
 
-    def h(self, x, y, th):
-        """``weight`` times the larger of two lower bounds of LONGD: Dubins, and the grid
-        distance (lattice frame)."""
+    def h(self, x, y, hi):
+        """``weight`` times the larger of two lower bounds of LONGD, Dubins and the grid
+        distance, and of the coarse lattice's cost-to-go once built (lattice frame; ``hi``
+        the heading's index)."""
         gx, gy, gth = self.goal_l
-        return self.weight * max(dubins_length_scalar(x, y, th, gx, gy, gth, self.R), self.field.lower(x, y))
+        b = max(dubins_length_scalar(x, y, _ANGLES[hi], gx, gy, gth, self.R), self.field.lower(x, y))
+        return self.weight * self.guided(x, y, hi, b)
 
     def try_goal(self, key, P, g):
         """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the goal."""
@@ -181,30 +178,6 @@ class _LatticeSearch(GoalApproaches):
         self.goal_g, self.goal_parent = g + c, (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
-    def enclosed(self, expanded: int) -> bool:
-        """Grow the goal's approach tree when due; True if the goal looks enclosed.
-
-        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions
-        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER`. If it runs
-        out of states first, it holds every state of the goal's lattice that reaches the
-        goal by primitives; if no union joins the start to any of them
-        (:meth:`start_joins`), no plan made of a union and such primitives exists. A union
-        from a state of the start's lattice may still reach the goal (not a proof): the
-        search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
-        """
-        if self.approach_keys is None and expanded >= self.approach_after:
-            self.build_approaches(self.approach_budget, self.approach_limit)
-        elif (
-            self.approach_keys is not None
-            and not self.approach_exhausted
-            and expanded >= ENCLOSURE_AFTER
-            and len(self.approach_keys) < self.enclosure_limit
-        ):
-            self.grow_approaches(self.enclosure_limit)
-        else:
-            return False
-        return self.approach_exhausted and not self.start_joins()
-
     def run(self, max_expansions: int, deadline: float):
         start = (0, 0, 0)
         self.g = {start: 0.0}
@@ -212,7 +185,8 @@ class _LatticeSearch(GoalApproaches):
         self.goal_g, self.goal_parent = math.inf, None
         self.certified_calls = 0
         self.approach_keys = None
-        self.heap = [(self.h(0.0, 0.0, 0.0), 0, start)]
+        self.ctg = None
+        self.heap = [(self.h(0.0, 0.0, 0), 0, start)]
         closed = set()
         counter = 1
         expanded = 0
@@ -249,6 +223,8 @@ class _LatticeSearch(GoalApproaches):
             if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
                 P = self.pose(key)
                 self.try_goal(key, P, g)
+            if expanded == GUIDE_AFTER and self.goal_parent is None:
+                self.guide(h_known)
             if self.goal_parent is None and stop_at == math.inf and self.enclosed(expanded):
                 stop_at = expanded + ENCLOSED_EXPANSIONS
             if self.approach_keys and hd <= self.goal_radius:
@@ -274,7 +250,7 @@ class _LatticeSearch(GoalApproaches):
                     continue
                 hs = h_known.get(nk)
                 if hs is None:  # h' of a state is the same from every parent: computed once
-                    hs = h_known[nk] = self.h((i + di) * r, (j + dj) * r, _ANGLES[h1])
+                    hs = h_known[nk] = self.h((i + di) * r, (j + dj) * r, h1)
                 if hs == math.inf:
                     continue  # the goal's region cannot be reached from there
                 if not free[m]:
@@ -334,15 +310,6 @@ class _LatticeSearch(GoalApproaches):
             kinds=tuple(kinds),
         )
 
-
-#: Expansions without a plan after which the goal's enclosure test runs (see
-#: :meth:`_LatticeSearch.enclosed`), and the approach states it grows to (at ``L / 8``; times
-#: 4 per halving of the resolution).
-ENCLOSURE_AFTER = 256
-ENCLOSURE_LIMIT = 300
-#: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
-#: the start's lattice may still reach it: not a proof), before it stops.
-ENCLOSED_EXPANSIONS = 512
 
 #: Default ``max_expansions`` of the lattice search.
 LATTICE_MAX_EXPANSIONS = 200_000
@@ -437,7 +404,7 @@ def plan_lattice(
     return plan
 
 
-def lattice_search(
+def _lattice_search(
     scenario,
     *,
     resolution=None,
@@ -451,11 +418,7 @@ def lattice_search(
     t0=None,
     workspace=None,
 ):
-    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used.
-
-    ``workspace``: a :class:`segplan.validity.Workspace` of this scenario to reuse (the
-    default planner passes the paper's search's; its counters then add up).
-    """
+    """:func:`lattice_search` without the escapes (one lattice search, its retry)."""
 
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
@@ -496,8 +459,12 @@ def lattice_search(
     gl = grid.to_lattice(np.array([goal[:2]]))[0]
     field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 5e4) * cell))
 
+    escapable = ""  # may tight arcs at the start or goal help? (not after a proof)
+
     def fail(reason, message, expanded, generated, best):
-        raise NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
+        exc = NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
+        exc.escapable = escapable
+        raise exc
 
     search = None
     la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
@@ -563,6 +530,9 @@ def lattice_search(
                     "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
                     "time": f"the time limit time_limit={time_limit:g} s was reached",
                 }[outcome]
+            # tight arcs may help: out of the start and into the goal after an exhausted
+            # lattice, into the goal after one that looks enclosed (not after a proof)
+            escapable = "both" if outcome == "exhausted" else "goal" if proofs[-1][1] == "enclosed" else ""
             fail(
                 outcome,
                 f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded_total} states",
@@ -571,3 +541,54 @@ def lattice_search(
                 best,
             )
     raise AssertionError("unreachable")
+
+
+def lattice_search(
+    scenario,
+    *,
+    resolution=None,
+    weight=2.0,
+    max_expansions=None,
+    time_limit=10.0,
+    retry=True,
+    analytic_every=8,
+    goal_radius=None,
+    cell=None,
+    t0=None,
+    workspace=None,
+    escapes=True,
+):
+    """:func:`plan_lattice`, also returning the :class:`segplan.links.LinkModel` it used.
+
+    ``workspace``: a :class:`segplan.validity.Workspace` of this scenario to reuse (the
+    default planner passes the paper's search's; its counters then add up).
+    ``escapes``: tight arcs out of the start and into the goal (:mod:`segplan.escape`):
+    when the lattice runs out of states (or the goal looks enclosed), search again between
+    their ends while the limits allow; when its plan costs far more than the Dubins
+    length, try the paper's direct union between their ends.
+    """
+    if not isinstance(escapes, bool):
+        raise ValueError(f"escapes must be True or False, got {escapes!r}")
+    t0 = time.perf_counter() if t0 is None else t0
+    options = dict(resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every)
+    options.update(goal_radius=goal_radius, cell=cell)
+    if isinstance(scenario, Scenario) and workspace is None:
+        robot = scenario.robot
+        workspace = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
+
+    def search(sub, expansions, seconds, start_time=None):
+        kw = dict(max_expansions=expansions, time_limit=seconds, t0=start_time, workspace=workspace)
+        return _lattice_search(sub, **kw, **options)
+
+    try:
+        plan, links = search(scenario, max_expansions, time_limit, t0)
+    except NoPathError as exc:
+        if not (escapes and getattr(exc, "escapable", "")):
+            raise
+        limit = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
+        deadline = t0 + float(time_limit)
+        plan = escape_search(scenario, workspace, exc, lambda *a: search(*a)[0], limit, deadline, t0)
+        links = LinkModel(workspace)
+    if escapes:
+        plan = improve_with_arcs(scenario, workspace, plan, t0)
+    return plan, links

@@ -159,7 +159,8 @@ class Plan:
     iterations : tuple of int
         Iterates used by every successful vertex candidate generated during the search.
     kinds : tuple of str
-        Kind of each node: ``"start"``, ``"vertex"``, ``"turn"``, ``"goal"`` (and
+        Kind of each node: ``"start"``, ``"vertex"``, ``"turn"``, ``"goal"``; the lattice
+        planner's ``"lattice"``, ``"approach"`` and ``"arc"`` (:mod:`segplan.escape`) (and
         ``"refined"`` for a node added or moved by :func:`segplan.refine`).
     refinement : Refinement or None
         What :func:`segplan.refine` changed (None: the search's plan as found).

@@ -409,8 +409,9 @@ DATA_PATH = Path(__file__).with_name("primitives.npz")
 #: Steering limit of the stored sets (radians: 45 deg).
 STORED_STEER = math.radians(45.0)
 #: ``L / resolution`` of the stored sets: the lattice's default resolution, its retry, and the
-#: coarser lattice of large floors (L / 4).
-STORED_CELLS = (4, 8, 16)
+#: coarser lattice of large floors (L / 4), and the coarse lattice of the cost-to-go (L / 2,
+#: :mod:`segplan.costtogo`).
+STORED_CELLS = (2, 4, 8, 16)
 #: The per-primitive scalar fields of :func:`primitive_arrays` (``points`` apart).
 FIELDS = ("h0", "h1", "di", "dj", "cost", "alpha", "d", "phi0", "phi1", "peak_curvature", "delta")
 _INT_FIELDS = ("h0", "h1", "di", "dj")

@@ -1,0 +1,221 @@
+"""A heading-aware cost-to-go over a coarse lattice: the lattice planner's guide on hard floors.
+
+Beyond the paper (issue 12). The lattice search's ``h'`` (:mod:`segplan.lattice`) is the
+larger of two bounds: the Dubins length (knows the heading, not the obstacles) and the
+:class:`segplan.clearance.DistanceField` (knows the obstacles, not the heading). Where the
+goal must be reached by a loop around obstacles, both lie far below the true cost, and A*
+floods every state whose ``g + h'`` is below it: thousands of expansions on a floor a
+Dubins car crosses easily.
+
+:class:`HeadingField` is the cost-to-go of the coarser lattice (cell ``L / 2``, the same 16
+headings and the same frame as the search's lattice, so that every search state has a
+coarse twin): Dijkstra (:func:`scipy.sparse.csgraph.dijkstra`) from the goal over the
+coarse primitives run backwards, with their exact LONGD [1] as costs. It is optimistic
+about obstacles: a coarse primitive is dropped only if one of a few of its swept points
+lies in a cell wholly inside an obstacle or beyond a wall
+(:attr:`segplan.clearance.ClearanceGrid.blocked`). The goal is seeded by the coarse states
+near it, each with its distance to the goal (the paper's final union is not on the lattice).
+It is an estimate, not a bound (the coarse lattice rounds), which the weighted search does
+not need; where it is infinite (no coarse route) the search falls back to the
+two bounds, so completeness on the search's lattice is not touched.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+import numpy as np
+
+from .approach import GOAL
+from .primitives import NH, heading_angles, heading_tables, primitive_set
+
+__all__ = [
+    "COARSE_CELLS",
+    "GUIDED_WEIGHT",
+    "GUIDE_AFTER",
+    "MAX_STATES",
+    "SEED_RADIUS",
+    "Guided",
+    "HeadingField",
+]
+
+#: The coarse lattice's cell: ``L / COARSE_CELLS`` (a stored primitive set).
+COARSE_CELLS = 2
+#: Coarse lattices larger than this many states are not built (the search keeps its bounds).
+MAX_STATES = 400_000
+#: Coarse states within this many coarse cells of the goal, at most one heading step from
+#: its heading, seed the Dijkstra.
+SEED_RADIUS = 3.0
+#: Expansions without a plan after which the search builds the coarse cost-to-go
+#: (:class:`segplan.costtogo.HeadingField`) and re-ranks its open list by it.
+GUIDE_AFTER = 200
+#: The weight on ``h'`` once the coarse cost-to-go guides the search (at most the search's own).
+GUIDED_WEIGHT = 1.2
+
+#: Swept points of a coarse primitive tested against the blocked cells: abscissae and
+#: positions along the segment (indices into the primitives' 13 x 7 samples).
+_S_IDX = (0, 3, 6, 9, 12)
+_T_IDX = (0, 3, 6)
+
+_ANGLES = heading_angles()
+
+
+class HeadingField:
+    """Cost-to-go of the coarse lattice from every coarse state to the goal (module docstring).
+
+    Parameters
+    ----------
+    grid : segplan.clearance.ClearanceGrid
+        The search's clearance grid (lattice frame).
+    robot : segplan.Robot
+    goal : (x, y, theta)
+        The goal in the lattice frame.
+    resolution : float
+        Coarse cell (m); a multiple of ``grid.cell``.
+
+    Attributes
+    ----------
+    table : ndarray (nx, ny, 16)
+        The cost-to-go (m of front-wheel path; ``inf``: no coarse route).
+    """
+
+    def __init__(self, grid, robot, goal, resolution: float):
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import dijkstra
+
+        L = robot.L
+        self.rc = rc = float(resolution)
+        q = int(round(rc / grid.cell))
+        ps = primitive_set(L, robot.max_steer, rc)
+        points, _, _, step, cost = heading_tables(ps, grid.cell)
+        # coarse points whose grid cell (and a margin of one coarse primitive) lies in the grid
+        reach = max(float(np.abs(p).max()) for p in points)
+        m = int(math.ceil(reach / grid.cell)) + 1
+        I0 = -(-(grid.i0 + m) // q)
+        I1 = (grid.i0 + grid.nx - m) // q
+        J0 = -(-(grid.j0 + m) // q)
+        J1 = (grid.j0 + grid.ny - m) // q
+        self.I0, self.J0 = I0, J0
+        self.nx, self.ny = nx, ny = max(I1 - I0 + 1, 0), max(J1 - J0 + 1, 0)
+        n = nx * ny * NH
+        self.table = np.full((nx, ny, NH), np.inf)
+        if n == 0:
+            return
+        blocked = grid.blocked_flat
+        ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+        base = (((ii + I0) * q - grid.i0) * grid.ny + ((jj + J0) * q - grid.j0)).ravel()  # cells
+        ii, jj = ii.ravel(), jj.ravel()
+        rows, cols, w = [], [], []
+
+        def flat(pts):
+            return np.floor(pts[..., 0] / grid.cell).astype(np.int64) * grid.ny + np.floor(
+                pts[..., 1] / grid.cell
+            ).astype(np.int64)
+
+        sel = (np.array(_S_IDX[1:])[:, None] * 7 + np.array(_T_IDX)[None, :]).ravel()
+        for h in range(NH):
+            # the states of heading h whose segment is not blocked at the start (points s = 0)
+            here = flat(points[h][0, np.array(_T_IDX), :])
+            f = ~blocked[base[:, None] + here].any(axis=1)
+            src, si, sj = base[f], ii[f], jj[f]
+            off = flat(points[h][:, sel, :])  # (m, k)
+            di, dj, h1 = (np.array(v) for v in zip(*step[h], strict=True))
+            ti, tj = si[:, None] + di, sj[:, None] + dj  # (n, m)
+            ok = (ti >= 0) & (ti < nx) & (tj >= 0) & (tj < ny)
+            ok &= ~blocked[src[:, None, None] + off[None]].any(axis=2)
+            # reversed edges: from the end state to the start state
+            rows.append(((ti * ny + tj) * NH + h1)[ok])
+            cols.append(np.broadcast_to(((si * ny + sj) * NH + h)[:, None], ok.shape)[ok])
+            w.append(np.broadcast_to(np.asarray(cost[h]), ok.shape)[ok])
+        # the seeds: coarse states near the goal, joined to a virtual node n by the Dubins
+        # length to the goal (the final union)
+        gx, gy, gth = goal
+        rad = SEED_RADIUS * rc
+        X = (np.arange(nx) + I0) * rc
+        Y = (np.arange(ny) + J0) * rc
+        near_x = np.abs(X - gx) <= rad
+        near_y = np.abs(Y - gy) <= rad
+        si, sj, sh = np.meshgrid(np.nonzero(near_x)[0], np.nonzero(near_y)[0], np.arange(NH), indexing="ij")
+        si, sj, sh = si.ravel(), sj.ravel(), sh.ravel()
+        dh = np.abs(np.remainder(_ANGLES[sh] - gth + math.pi, 2 * math.pi) - math.pi)
+        # the goal ahead of the seed (within a cone), as a final union needs it
+        ex, ey = gx - X[si], gy - Y[sj]
+        ahead = ex * np.cos(_ANGLES[sh]) + ey * np.sin(_ANGLES[sh])
+        side = np.abs(-ex * np.sin(_ANGLES[sh]) + ey * np.cos(_ANGLES[sh]))
+        keep = (np.hypot(ex, ey) <= rad) & (dh <= 2 * math.pi / NH + 1e-9)
+        keep &= (ahead >= -0.5 * rc) & (side <= 0.5 * rc + 0.6 * np.maximum(ahead, 0.0))
+        si, sj, sh = si[keep], sj[keep], sh[keep]
+        if si.size:
+            seed = np.hypot(X[si] - gx, Y[sj] - gy)
+            rows.append(np.full(si.size, n))
+            cols.append((si * ny + sj) * NH + sh)
+            w.append(np.asarray(seed, dtype=float) + 1e-9)
+        r = np.concatenate(rows) if rows else np.zeros(0, dtype=np.int64)
+        c = np.concatenate(cols) if cols else np.zeros(0, dtype=np.int64)
+        graph = coo_matrix((np.concatenate(w), (r, c)), shape=(n + 1, n + 1)).tocsr()
+        dist = dijkstra(graph, directed=True, indices=n)
+        self.table = dist[:n].reshape(nx, ny, NH)
+
+    def estimate(self, x: float, y: float, h: int) -> float:
+        """The least cost-to-go of the (up to four) coarse states around ``(x, y)`` at heading ``h``.
+
+        ``x, y`` in the lattice frame (m); ``inf`` if none has a coarse route.
+        """
+        fi, fj = x / self.rc - self.I0, y / self.rc - self.J0
+        i, j = int(math.floor(fi)), int(math.floor(fj))
+        best = math.inf
+        t = self.table
+        for a in (i, i + 1):
+            if 0 <= a < self.nx:
+                for b in (j, j + 1):
+                    if 0 <= b < self.ny:
+                        v = t[a, b, h]
+                        if v < best:
+                            best = v
+        return float(best)
+
+    @staticmethod
+    def resolution(grid, L: float) -> float | None:
+        """The coarse cell for ``grid`` (``L / COARSE_CELLS``), or None if that is not a
+        multiple of the grid's cell or the coarse lattice would exceed :data:`MAX_STATES`."""
+        rc = L / COARSE_CELLS
+        q = rc / grid.cell
+        if abs(q - round(q)) > 1e-9 or round(q) < 1:
+            return None
+        if (grid.nx * grid.ny) / (q * q) * NH > MAX_STATES:
+            return None
+        return rc
+
+
+class Guided:
+    """The lattice search's use of :class:`HeadingField` (a mixin of its search class, which
+    holds ``grid``, ``robot``, ``L``, ``r``, ``goal_l``, ``g``, ``heap``, ``weight`` and ``h``)."""
+
+    ctg: HeadingField | None = None
+
+    def guided(self, x: float, y: float, hi: int, bound: float) -> float:
+        """``bound`` raised to the coarse cost-to-go at ``(x, y)``, heading ``hi``, once built."""
+        if self.ctg is not None:
+            e = self.ctg.estimate(x, y, hi)
+            if bound < e < math.inf:
+                return e
+        return bound
+
+    def guide(self, h_known: dict) -> None:
+        """Build the coarse cost-to-go (:class:`segplan.costtogo.HeadingField`) and re-rank
+        the open list by it (the states' ``h'`` are computed anew)."""
+        rc = HeadingField.resolution(self.grid, self.L)
+        if rc is None:
+            return
+        self.ctg = HeadingField(self.grid, self.robot, self.goal_l, rc)
+        self.weight = min(self.weight, GUIDED_WEIGHT)  # a closer estimate needs less weight
+        h_known.clear()
+        heap = []
+        for f, n, key in self.heap:
+            if key != GOAL:
+                i, j, hi = key
+                f = self.g[key] + self.h(i * self.r, j * self.r, hi)
+            heap.append((f, n, key))
+        heapq.heapify(heap)
+        self.heap[:] = heap
