@@ -1,0 +1,347 @@
+"""The lattice planner's tight arcs (segplan.escape) and coarse cost-to-go (segplan.costtogo), issue 12.
+
+Independent oracles: shapely's dense sampling of the swept segment
+(:func:`segplan.measure_scenario_path`) for freedom and the front-wheel length, the circle
+through the arc's poses (its centre from the pose's heading) for the arc's shape, and for the
+wall-facing starts a bound from the kinematics alone: a forward path that starts with the
+rear point A heading straight at a wall and turns its heading by 45 degrees moves the front
+wheel B at least ``sqrt(R^2 + L^2) - L`` towards the wall (``dB_x = cos(theta) ds - L
+sin(theta) dtheta`` with ``ds >= R |dtheta|``), so a start whose front wheel is closer to the
+wall than that admits no forward plan to a goal behind it, escapes or not.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import segplan.lattice as lattice_module
+from segplan import (
+    NoPathError,
+    ScenarioError,
+    make_scenario,
+    measure_scenario_path,
+    plan_poses,
+    plan_scenario,
+)
+from segplan.clearance import ClearanceGrid
+from segplan.costtogo import GUIDE_AFTER, HeadingField
+from segplan.dubins import dubins_length_scalar
+from segplan.escape import IMPROVE_GAP, RADIUS_FACTORS, STEP, TURNS, improve_with_arcs, tight_arcs
+from segplan.lattice import lattice_search, plan_lattice
+from segplan.links import LinkModel
+from segplan.path import union_longd, unions_longd
+from segplan.primitives import heading_angles, max_reach
+from segplan.studies import floors
+from segplan.validity import Workspace
+
+ROBOT = floors.ROBOT
+BOUNDS = floors.SMALL_BOUNDS
+R = ROBOT.min_turning_radius
+ANGLES = heading_angles()
+
+
+def _rect(x0, y0, x1, y1):
+    return [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
+
+
+def _scenario(start, goal, obstacles=()):
+    return make_scenario(ROBOT, start, goal, list(obstacles), BOUNDS)
+
+
+def _workspace(sc):
+    return Workspace(sc.enlarged, sc.robot.L, sc.free_bounds, sc.robot.max_curvature)
+
+
+def _assert_joined(unions):
+    for u, v in zip(unions, unions[1:], strict=False):
+        assert u.p1 == v.p0  # exactly: the next union starts at the pose the last one ends
+
+
+def _assert_valid(plan, sc):
+    """Ends exact, unions joined, steering limit per union, and the dense shapely oracle."""
+    assert plan.nodes[0] == sc.start and plan.nodes[-1] == sc.goal
+    assert plan.unions[0].p0 == sc.start and plan.unions[-1].p1 == sc.goal
+    _assert_joined(plan.unions)
+    assert tuple(plan.nodes[1:]) == tuple(u.p1 for u in plan.unions)
+    for u in plan.unions:
+        assert u.max_curvature() <= sc.robot.max_curvature * (1 + 1e-9)
+    m = measure_scenario_path(plan_poses(plan), sc)
+    assert not m.collides
+    assert m.reversals == 0
+    # LONGD is the front wheel's path length: the plan's cost against shapely-free sampling
+    assert m.front_length == pytest.approx(plan.cost, rel=2e-3)
+    return m
+
+
+# -- 1. tight arcs ----------------------------------------------------------------------------
+OBSTACLE = _rect(9.0, 5.0, 11.0, 7.0)
+poses = st.tuples(st.floats(6.0, 14.0), st.floats(2.0, 10.0), st.floats(-math.pi, math.pi, exclude_max=True))
+
+
+def _side(arc):
+    """1: the arc turns left, -1: right."""
+    u = arc.unions[0]
+    return 1 if math.remainder(u.p1.theta - u.p0.theta, 2 * math.pi) > 0 else -1
+
+
+def _check_arcs(sc, pose, into):
+    ws = _workspace(sc)
+    arcs = tight_arcs(ws, LinkModel(ws), pose, R, into=into)
+    p = tuple(pose)
+    for arc in arcs:
+        assert arc.into is into
+        assert len(arc.unions) >= 1
+        _assert_joined(arc.unions)
+        assert arc.unions[0].p0 == arc.first and arc.unions[-1].p1 == arc.last
+        if into:
+            assert tuple(arc.last) == p and arc.inner == arc.first
+        else:
+            assert tuple(arc.first) == p and arc.inner == arc.last
+        assert arc.cost == pytest.approx(unions_longd(arc.unions), rel=1e-12)
+        assert arc.cost == pytest.approx(sum(union_longd(u) for u in arc.unions), rel=1e-12)
+        for u in arc.unions:
+            assert u.max_curvature() <= ROBOT.max_curvature * (1 + 1e-9)
+        # the turn: every union turns by STEP the same way, and the whole is one of TURNS
+        steps = [math.remainder(u.p1.theta - u.p0.theta, 2 * math.pi) for u in arc.unions]
+        side = 1 if steps[0] > 0 else -1
+        assert steps == pytest.approx([side * STEP] * len(steps), abs=1e-9)
+        turn = abs(sum(steps))
+        assert min(abs(turn - t) for t in TURNS) < 1e-9
+        # along a circle: radius from the chord over the whole arc, and every node on the
+        # circle tangent to the fixed pose at it, on the turning side
+        chord = math.dist(arc.first[:2], arc.last[:2])
+        rho = chord / (2 * math.sin(turn / 2))
+        assert RADIUS_FACTORS[0] * R * (1 - 1e-9) <= rho <= 1.1 * R * (1 + 1e-9)
+        cx = p[0] - side * rho * math.sin(p[2])
+        cy = p[1] + side * rho * math.cos(p[2])
+        for q in [arc.first] + [u.p1 for u in arc.unions]:
+            assert math.hypot(q[0] - cx, q[1] - cy) == pytest.approx(rho, abs=1e-9)
+        # free: shapely's dense oracle over the whole chain (and so every union)
+        m = measure_scenario_path(plan_poses(arc.unions), sc)
+        assert not m.collides
+        assert m.reversals == 0
+    return arcs
+
+
+def _valid_or_skip(pose, goal, obstacles):
+    from hypothesis import assume
+
+    try:
+        return _scenario(pose, goal, obstacles)
+    except ScenarioError:
+        assume(False)
+
+
+@settings(max_examples=25)
+@given(pose=poses, into=st.booleans())
+def test_tight_arcs_in_an_empty_room_join_keep_the_limit_turn_on_a_circle_and_are_free(pose, into):
+    sc = _valid_or_skip(pose, (2.0, 2.0, 0.0), ())
+    arcs = _check_arcs(sc, sc.start, into)
+    # far from the walls every side and every turn is offered (6 .. 10 m from x walls)
+    if min(pose[0] - 0.3, 19.7 - pose[0], pose[1] - 0.3, 11.7 - pose[1]) > 2 * 1.1 * R + ROBOT.L:
+        assert len(arcs) == 2 * len(TURNS)
+
+
+@settings(max_examples=30)
+@given(pose=poses, into=st.booleans())
+def test_tight_arcs_next_to_an_obstacle_join_keep_the_limit_and_are_free(pose, into):
+    sc = _valid_or_skip(pose, (2.0, 2.0, 0.0), [OBSTACLE])
+    _check_arcs(sc, sc.start, into)
+
+
+@pytest.mark.parametrize("into", [False, True])
+def test_tight_arcs_in_the_open_offer_every_turn_on_both_sides(into):
+    sc = _scenario((10.0, 6.0, 0.3), (2.0, 2.0, 0.0))
+    arcs = _check_arcs(sc, sc.start, into)
+    assert {_side(a) for a in arcs} == {1, -1}
+    assert sorted(len(a.unions) for a in arcs) == sorted(2 * [int(round(t / STEP)) for t in TURNS])
+
+
+def test_tight_arcs_stop_before_an_obstacle_the_dense_oracle_sees():
+    """A pose just left of a block: the left arcs end before the block (and are free), the
+    right ones go all the way."""
+    sc = _scenario((10.0, 4.6, 0.0), (2.0, 2.0, 0.0), [_rect(8.0, 6.0, 14.0, 7.0)])
+    arcs = _check_arcs(sc, sc.start, False)
+    assert sum(_side(a) == -1 for a in arcs) == len(TURNS)
+    assert sum(_side(a) == 1 for a in arcs) < len(TURNS)
+
+
+# -- 2. escapes -------------------------------------------------------------------------------
+XMAX = BOUNDS[2] - ROBOT.half_width  # the free bounds' right wall
+
+
+def _facing_wall(gap, heading=0.0, y=6.0):
+    """Front wheel ``gap`` m from the right wall (planning model), goal 7 m behind heading back."""
+    bx = XMAX - gap
+    ax, ay = bx - ROBOT.L * math.cos(heading), y - ROBOT.L * math.sin(heading)
+    return _scenario((ax, ay, heading), (ax - 7.0, y, math.pi))
+
+
+@pytest.mark.parametrize(("gap", "heading"), [(0.43, 0.0), (0.46, 0.0), (0.49, 0.0), (0.35, 0.1), (0.3, 0.2)])
+def test_a_start_facing_a_wall_escapes_by_tight_arcs(gap, heading):
+    sc = _facing_wall(gap, heading)
+    with pytest.raises(NoPathError) as e:
+        lattice_search(sc, escapes=False)
+    assert e.value.reason == "exhausted"
+    plan, _ = lattice_search(sc)
+    assert "arc" in plan.kinds
+    assert plan.kinds[0] == "start" and plan.kinds[-1] == "goal"
+    _assert_valid(plan, sc)
+
+
+@pytest.mark.parametrize("gap", [0.3, 0.35, 0.4])
+def test_no_escape_where_the_kinematics_forbid_a_forward_turn(gap):
+    """Heading straight at the wall with the front wheel closer than sqrt(R^2 + L^2) - L:
+    no forward plan exists (module docstring); the arcs must not invent one."""
+    assert gap < math.hypot(R, ROBOT.L) - ROBOT.L
+    sc = _facing_wall(gap)
+    with pytest.raises(NoPathError) as e:
+        lattice_search(sc)
+    assert e.value.reason == "exhausted"
+
+
+def test_random_floor_any_114_needs_the_arcs():
+    sc = floors.random_floor("any", 114)
+    with pytest.raises(NoPathError) as e:
+        lattice_search(sc, escapes=False)
+    assert e.value.reason == "exhausted"
+    plan, _ = lattice_search(sc)
+    assert "arc" in plan.kinds
+    _assert_valid(plan, sc)
+
+
+@pytest.mark.parametrize(("kind", "index"), [("any", 114), ("natural", 77)])
+def test_plan_scenario_solves_floors_the_lattice_alone_exhausts(kind, index):
+    sc = floors.random_floor(kind, index)
+    with pytest.raises(NoPathError):
+        lattice_search(sc, escapes=False)
+    _assert_valid(plan_scenario(sc), sc)
+
+
+# -- 3. improvement by arcs -------------------------------------------------------------------
+def test_improve_with_arcs_turns_under_the_obstacle_on_any_166():
+    sc = floors.random_floor("any", 166)
+    lattice_only, _ = lattice_search(sc, escapes=False)
+    dubins = dubins_length_scalar(*sc.start, *sc.goal, R)
+    assert lattice_only.cost > IMPROVE_GAP * dubins  # the condition for trying the arcs
+    improved, _ = lattice_search(sc)
+    assert "arc" in improved.kinds
+    assert improved.cost < lattice_only.cost
+    m0 = _assert_valid(lattice_only, sc)
+    m1 = _assert_valid(improved, sc)
+    assert m1.front_length < m0.front_length  # shorter by the independent measure too
+
+
+def test_improve_with_arcs_returns_a_plan_near_the_dubins_length_unchanged():
+    sc = floors.hard_cases()["door"]
+    ws = _workspace(sc)
+    plan, _ = lattice_search(sc, escapes=False, workspace=ws)
+    assert plan.cost <= IMPROVE_GAP * dubins_length_scalar(*sc.start, *sc.goal, R)
+    assert improve_with_arcs(sc, ws, plan, 0.0) is plan
+    again, _ = lattice_search(sc)
+    assert [(u.p0, u.p1, u.alpha) for u in again.unions] == [(u.p0, u.p1, u.alpha) for u in plan.unions]
+    assert again.kinds == plan.kinds and again.cost == plan.cost
+
+
+# -- 4. the coarse cost-to-go -----------------------------------------------------------------
+def _field(sc):
+    """The HeadingField of a scenario, on a clearance grid built as the lattice search builds it."""
+    L = sc.robot.L
+    ws = _workspace(sc)
+    cell = L / 16
+    pad = int(math.ceil(max_reach(L, sc.robot.max_steer, L / 2) / cell)) + 2
+    grid = ClearanceGrid(ws.convex, tuple(sc.start), sc.free_bounds, cell, pad, sc.goal, 4 * L + 4 * R)
+    gx, gy = grid.to_lattice(np.array([sc.goal[:2]]))[0]
+    goal_l = (gx, gy, math.remainder(sc.goal.theta - sc.start.theta, 2 * math.pi))
+    rc = HeadingField.resolution(grid, L)
+    assert rc == L / 2
+    return HeadingField(grid, sc.robot, goal_l, rc), goal_l
+
+
+def _h(theta):
+    (k,) = np.nonzero(np.abs(ANGLES - theta) < 1e-9)[0]
+    return int(k)
+
+
+def test_heading_field_near_and_far_in_an_empty_room():
+    sc = _scenario((2.0, 6.0, 0.0), (14.0, 6.0, 0.0))  # lattice frame = world shifted by the start
+    field, (gx, gy, gth) = _field(sc)
+    assert (gx, gy, gth) == (12.0, 0.0, 0.0)
+    assert field.estimate(gx - 0.1, gy, _h(0.0)) < 0.5
+    for x, y, th in [
+        (0.0, 0.0, 0.0),
+        (-1.0, 4.0, math.pi / 2),
+        (2.0, -4.0, math.pi),
+        (0.0, 5.0, -math.pi / 2),
+    ]:
+        e = field.estimate(x, y, _h(th))
+        assert math.isfinite(e)
+        assert e >= math.hypot(gx - x, gy - y) - 2 * field.rc
+        # not absurdly above a Dubins car's length (plus the union's detour of the front wheel)
+        assert e <= 1.5 * dubins_length_scalar(x, y, th, gx, gy, gth, R) + 2 * ROBOT.L
+
+
+def test_heading_field_knows_the_heading():
+    sc = _scenario((2.0, 6.0, 0.0), (14.0, 6.0, 0.0))
+    field, (gx, gy, _) = _field(sc)
+    facing = field.estimate(gx - 1.0, gy, _h(0.0))
+    away = field.estimate(gx - 1.0, gy, _h(math.pi))
+    assert facing < 1.5
+    assert away > facing + 2 * R  # a loop of radius >= R to come about
+    # just past the goal with its heading: a whole turn (rear path >= 2 pi R, and the front
+    # wheel's is longer), up to the coarse lattice's rounding
+    assert field.estimate(gx + 1.0, gy, _h(0.0)) > 2 * math.pi * R - 2 * field.rc
+
+
+def test_heading_field_is_finite_in_the_open():
+    """Optimistic: in an empty room every coarse state at least 2 R + L from the walls
+    (room for a turn whichever way it faces) has a coarse route to the goal."""
+    sc = _scenario((2.0, 6.0, 0.0), (14.0, 6.0, 0.0))
+    field, _ = _field(sc)
+    X = (np.arange(field.nx) + field.I0) * field.rc + sc.start.x  # world (the start heads along x)
+    Y = (np.arange(field.ny) + field.J0) * field.rc + sc.start.y
+    m = 2 * R + ROBOT.L
+    xmin, ymin, xmax, ymax = BOUNDS
+    inner = ((X >= xmin + m) & (X <= xmax - m))[:, None] & ((Y >= ymin + m) & (Y <= ymax - m))[None, :]
+    assert inner.sum() > 300
+    assert np.isfinite(field.table[inner]).all()
+
+
+@pytest.mark.parametrize("width", [0.2, 1.0])
+def test_heading_field_is_infinite_beyond_a_wall_across_the_room(width):
+    wall = _rect(10.0 - width / 2, 0.0, 10.0 + width / 2, 12.0)
+    sc = _scenario((2.0, 6.0, 0.0), (16.0, 6.0, 0.0), [wall])
+    field, (gx, gy, _) = _field(sc)
+    assert field.estimate(gx - 0.1, gy, _h(0.0)) < 0.5  # the goal's side is reached
+    for x, y in [(0.0, 0.0), (2.0, 3.0), (5.0, -4.0)]:  # the start's side
+        for th in (0.0, math.pi / 2, math.pi):
+            assert field.estimate(x, y, _h(th)) == math.inf
+    # every coarse state whose segment lies wholly on the start's side of the enlarged wall
+    X = (np.arange(field.nx) + field.I0) * field.rc + sc.start.x
+    left = 10.0 - width / 2 - ROBOT.half_width
+    assert np.isinf(field.table[X + ROBOT.L < left]).all()
+    assert np.isfinite(field.table[X > 10.0 + width / 2 + ROBOT.half_width]).any()
+
+
+# -- 5. bad input -----------------------------------------------------------------------------
+@pytest.mark.parametrize("bad", [1, 0, None, "yes"])
+def test_escapes_must_be_a_bool(bad):
+    sc = _facing_wall(0.46)
+    with pytest.raises(ValueError, match="escapes"):
+        lattice_search(sc, escapes=bad)
+
+
+# -- 6. the guide -----------------------------------------------------------------------------
+def test_the_guide_solves_any_6_in_few_expansions(monkeypatch):
+    sc = floors.random_floor("any", 6)
+    plan = plan_lattice(sc, max_expansions=1000)
+    assert GUIDE_AFTER < plan.expanded < 1000  # needed the guide, and it did the job
+    _assert_valid(plan, sc)
+    # without the guide the same limit is not enough
+    monkeypatch.setattr(lattice_module, "GUIDE_AFTER", 10**9)
+    with pytest.raises(NoPathError) as e:
+        plan_lattice(sc, max_expansions=1000)
+    assert e.value.reason == "expansions"
