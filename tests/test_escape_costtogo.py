@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import segplan.lattice as lattice_module
@@ -127,8 +127,6 @@ def _check_arcs(sc, pose, into):
 
 
 def _valid_or_skip(pose, goal, obstacles):
-    from hypothesis import assume
-
     try:
         return _scenario(pose, goal, obstacles)
     except ScenarioError:
@@ -337,11 +335,11 @@ def test_escapes_must_be_a_bool(bad):
 # -- 6. the guide -----------------------------------------------------------------------------
 def test_the_guide_solves_any_6_in_few_expansions(monkeypatch):
     sc = floors.random_floor("any", 6)
-    plan = plan_lattice(sc, max_expansions=1000)
+    plan = plan_lattice(sc, max_expansions=1000, time_limit=60.0)  # the expansions decide, not time
     assert GUIDE_AFTER < plan.expanded < 1000  # needed the guide, and it did the job
     _assert_valid(plan, sc)
     # without the guide the same limit is not enough
     monkeypatch.setattr(lattice_module, "GUIDE_AFTER", 10**9)
     with pytest.raises(NoPathError) as e:
-        plan_lattice(sc, max_expansions=1000)
+        plan_lattice(sc, max_expansions=1000, time_limit=60.0)
     assert e.value.reason == "expansions"
