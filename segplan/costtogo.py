@@ -49,7 +49,7 @@ MAX_STATES = 400_000
 SEED_RADIUS = 3.0
 #: Expansions without a plan after which the search builds the coarse cost-to-go
 #: (:class:`segplan.costtogo.HeadingField`) and re-ranks its open list by it.
-GUIDE_AFTER = 200
+GUIDE_AFTER = 64
 #: The weight on ``h'`` once the coarse cost-to-go guides the search (at most the search's own).
 GUIDED_WEIGHT = 1.2
 

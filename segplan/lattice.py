@@ -72,7 +72,7 @@ from .dubins import dubins_length_scalar
 from .escape import escape_search, improve_with_arcs
 from .frame import heuristic_coefficients
 from .links import LinkModel
-from .path import NoPathError, Plan, check_limits, check_option, union_longd, unions_longd
+from .path import NoPathError, Plan, check_limits, check_option, direct_plan, union_longd
 from .pose import Pose
 from .primitives import fine_points, heading_angles, heading_tables, max_reach, primitive_set
 from .shortcut import shortcut_plan
@@ -86,6 +86,7 @@ __all__ = [
     "ENCLOSURE_LIMIT",
     "GOAL_RADIUS",
     "LATTICE_MAX_EXPANSIONS",
+    "lattice_options",
     "lattice_search",
     "plan_lattice",
 ]
@@ -318,29 +319,6 @@ LATTICE_MAX_EXPANSIONS = 200_000
 GOAL_RADIUS = (2.0, 1.0)
 
 
-def _direct_plan(ws, start, u, t0):
-    """The plan of one free union (or none: the start is the goal)."""
-
-    unions = () if u is None else (u,)
-    cost = unions_longd(unions)
-    return Plan(
-        nodes=(start,) + tuple(v.p1 for v in unions),
-        unions=unions,
-        cost=cost,
-        search_cost=cost,
-        expanded=0 if u is None else 1,
-        generated=1 + len(unions),
-        seconds=time.perf_counter() - t0,
-        heuristic="dubins",
-        cost_kind="longd",
-        version="lattice",
-        collision_checks=ws.stats.collision_checks,
-        exact_checks=ws.stats.exact_checks,
-        iterations=(),
-        kinds=("start",) + ("goal",) * len(unions),
-    )
-
-
 def plan_lattice(
     scenario,
     *,
@@ -404,6 +382,32 @@ def plan_lattice(
     return plan
 
 
+def lattice_options(
+    scenario, *, resolution=None, weight=2.0, retry=True, analytic_every=8, goal_radius=None, cell=None,
+    escapes=True,
+):  # fmt: skip
+    """The options of :func:`lattice_search` checked (ValueError naming a bad one), in this
+    order without ``escapes``; :func:`segplan.plan_scenario` checks them even where it
+    does not run the lattice."""
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    L = scenario.robot.L
+    resolution = check_option(resolution, "resolution", 0.0, allow_none=True)
+    if resolution is not None and resolution > L:
+        raise ValueError(f"resolution must be at most L={L}, got {resolution!r}")
+    for name, flag in (("retry", retry), ("escapes", escapes)):
+        if not isinstance(flag, bool):
+            raise ValueError(f"{name} must be True or False, got {flag!r}")
+    return (
+        resolution,
+        check_option(weight, "weight", 1.0, lo_ok=True),  # 1: the admissible h'
+        retry,
+        check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True),
+        check_option(goal_radius, "goal_radius", 0.0, allow_none=True),
+        check_option(cell, "cell", 0.0, allow_none=True),
+    )
+
+
 def _lattice_search(
     scenario,
     *,
@@ -420,22 +424,15 @@ def _lattice_search(
 ):
     """:func:`lattice_search` without the escapes (one lattice search, its retry)."""
 
-    if not isinstance(scenario, Scenario):
-        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
-    resolution = check_option(resolution, "resolution", 0.0, allow_none=True)
-    if resolution is not None and resolution > L:
-        raise ValueError(f"resolution must be at most L={L}, got {resolution!r}")
-    weight = check_option(weight, "weight", 1.0, lo_ok=True)  # 1: the admissible h'
+    resolution, weight, retry, analytic_every, goal_radius, cell = lattice_options(
+        scenario, resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every,
+        goal_radius=goal_radius, cell=cell,
+    )  # fmt: skip
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
     if max_expansions is None:
         max_expansions = LATTICE_MAX_EXPANSIONS
-    analytic_every = check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True)
-    goal_radius = check_option(goal_radius, "goal_radius", 0.0, allow_none=True)
-    cell = check_option(cell, "cell", 0.0, allow_none=True)
-    if not isinstance(retry, bool):
-        raise ValueError(f"retry must be True or False, got {retry!r}")
     res = resolution or 0.125 * L
     tries = [res, 0.5 * res] if retry else [res]
     tries, cell = grid_resolutions(scenario, tries, cell, 4.0 * L + 4.0 * R, resolution is None)
@@ -452,7 +449,7 @@ def _lattice_search(
     # the paper's direct union first: where it is free, it is the plan (no grid to build)
     direct = None if start == goal else ex.union(start, goal)
     if start == goal or (direct is not None and ws.union_free(direct)):
-        return _direct_plan(ws, start, direct, t0), ex
+        return direct_plan(start, direct, time.perf_counter() - t0, ws.stats), ex
     reach = max(max_reach(L, robot.max_steer, t) for t in tries)
     pad = int(math.ceil(reach / cell)) + 2
     grid = ClearanceGrid(ws.convex, tuple(start), scenario.free_bounds, cell, pad, goal, 4.0 * L + 4.0 * R)
@@ -567,8 +564,7 @@ def lattice_search(
     their ends while the limits allow; when its plan costs far more than the Dubins
     length, try the paper's direct union between their ends.
     """
-    if not isinstance(escapes, bool):
-        raise ValueError(f"escapes must be True or False, got {escapes!r}")
+    lattice_options(scenario, retry=retry, escapes=escapes)
     t0 = time.perf_counter() if t0 is None else t0
     options = dict(resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every)
     options.update(goal_radius=goal_radius, cell=cell)

@@ -22,6 +22,7 @@ __all__ = [
     "Refinement",
     "check_limits",
     "check_option",
+    "direct_plan",
     "union_longd",
     "unions_longd",
 ]
@@ -200,3 +201,27 @@ class Plan:
             "exact_checks": self.exact_checks,
             "refinement": None if self.refinement is None else dataclasses.asdict(self.refinement),
         }
+
+
+def direct_plan(start, u, seconds: float, stats) -> Plan:
+    """The lattice planner's plan of one free union ``u`` from ``start`` (or of none: the
+    start is the goal); ``stats`` the workspace's counters (``collision_checks``,
+    ``exact_checks``)."""
+    unions = () if u is None else (u,)
+    cost = unions_longd(unions)
+    return Plan(
+        nodes=(start,) + tuple(v.p1 for v in unions),
+        unions=unions,
+        cost=cost,
+        search_cost=cost,
+        expanded=0 if u is None else 1,
+        generated=1 + len(unions),
+        seconds=seconds,
+        heuristic="dubins",
+        cost_kind="longd",
+        version="lattice",
+        collision_checks=stats.collision_checks,
+        exact_checks=stats.exact_checks,
+        iterations=(),
+        kinds=("start",) + ("goal",) * len(unions),
+    )

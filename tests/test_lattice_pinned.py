@@ -17,12 +17,11 @@ from segplan.studies.floors import random_floor
 
 #: (kind, index, planner) -> (expanded, kinds, cost as float.hex) or ("error", reason, expanded)
 PINNED = {
-    ("any", 14, "lattice"): (
-        8,
-        ("start", "lattice", "lattice", "refined", "refined", "goal"),
-        "0x1.d7e3a7e6d1f14p+3",
-    ),
-    ("natural", 29, "lattice"): (10, ("start", "refined", "refined", "goal"), "0x1.2ba8b7bf93dbcp+3"),
+    # the paper's plans, refined: NEAR_LOWER_BOUND 1.05 -> 1.3 (issue 12, plan time) skips the
+    # lattice on them (before: 8 and 10 expansions, 14.75 m = 0x1.d7e3a7e6d1f14p+3 and
+    # 9.36 m = 0x1.2ba8b7bf93dbcp+3; now 15.31 m, longer, and 9.32 m, shorter)
+    ("any", 14, "lattice"): (2, ("start", "refined", "refined", "goal"), "0x1.e9d688159286ep+3"),
+    ("natural", 29, "lattice"): (2, ("start", "refined", "refined", "goal"), "0x1.2a4c533ec9dacp+3"),
     ("any", 27, "lattice"): (1, ("start", "refined", "goal"), "0x1.b555b99283894p+3"),
     ("any", 12, "lattice"): ("error", "exhausted", 3),
     ("natural", 0, "paper"): (2, ("start", "vertex", "goal"), "0x1.6e62ea6a463ccp+3"),
