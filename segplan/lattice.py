@@ -330,6 +330,7 @@ def plan_lattice(
     analytic_every: int = 8,
     goal_radius: float | None = None,
     cell: float | None = None,
+    escapes: bool = True,
 ):
     """Plan on the lattice of cubic-union primitives (module docstring).
 
@@ -356,6 +357,8 @@ def plan_lattice(
         Cell size of the clearance grid (m; it must divide every resolution tried); by
         default half the finest resolution, not below ``L / 16``, coarser on large floors
         (:data:`segplan.clearance.MAX_CELLS`, where the lattice coarsens too unless ``resolution`` is given).
+    escapes : bool
+        Tight arcs at the ends (:mod:`segplan.escape`; see :func:`lattice_search`).
 
     Returns
     -------
@@ -378,6 +381,7 @@ def plan_lattice(
         analytic_every=analytic_every,
         goal_radius=goal_radius,
         cell=cell,
+        escapes=escapes,
     )
     return plan
 
