@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+import types
 import weakref
 
 from .cost import checked_intrinsic, longd_exact_intrinsic
@@ -37,6 +38,7 @@ from .world import Robot, Scenario, make_scenario, with_clearance
 
 __all__ = [
     "LATTICE_AFTER_PAPER",
+    "LATTICE_REFINE",
     "NEAR_LOWER_BOUND",
     "PAPER_SHARE",
     "PLANNERS",
@@ -130,6 +132,11 @@ LATTICE_AFTER_PAPER = 400
 #: largest length ratio as they were and took a quarter off the median plan time; the
 #: refinement wins back what the lattice would have.
 NEAR_LOWER_BOUND = 1.3
+#: The default planner's refinement (:func:`segplan.refine` options): at most 3 sweeps of
+#: local moves per round instead of 6. Measured on the 400 random floors of chapter 9: the
+#: median plan time 63 -> 43 ms (the local moves were most of it), the median length ratio
+#: to BIT* 0.979 -> 0.982, the largest 1.140 -> 1.141.
+LATTICE_REFINE = types.MappingProxyType({"max_sweeps": 3})
 
 
 def plan_scenario(
@@ -170,9 +177,10 @@ def plan_scenario(
         (the book's reproduction chapters call it so).
     refine : bool or dict, optional
         Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
-        splits, local moves of the nodes), with default options (True) or these
-        keyword arguments (a dict). ``Plan.seconds`` then counts search and refinement.
-        Default: True for the lattice planner, False for the paper's search.
+        splits, local moves of the nodes), with default options (True; for the lattice
+        planner :data:`LATTICE_REFINE`) or these keyword arguments (a dict). ``Plan.seconds``
+        then counts search and refinement. Default: True for the lattice planner, False for
+        the paper's search.
     clearance : float
         Safety margin (m, >= 0) beyond ``half_width``: the search and the refinement plan
         around obstacles enlarged by ``half_width + clearance`` and walls moved in as
@@ -298,7 +306,7 @@ def plan_scenario(
         return found
     # the refinement reuses the link model (validity checker, unions and costs) of the
     # search whose plan it refines
-    return refine_with(found, links, **({} if refine is True else refine))
+    return refine_with(found, links, **(LATTICE_REFINE if refine is True else refine))
 
 
 def plan_scenario_observed(scenario: Scenario, observer, heuristic: str = "a", **options) -> Plan:
