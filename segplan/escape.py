@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 from .dubins import dubins_length_scalar
 from .path import NoPathError, union_longd, unions_longd
-from .pose import Pose
+from .pose import Pose, arc_end
 
 __all__ = [
     "IMPROVE_GAP",
@@ -67,14 +67,9 @@ class Arc:
 
 
 def _circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
-    """The rear point's pose after driving ``turn`` radians (negative: backwards) along the
-    circle of radius ``rho`` to the left (``side=1``) or right (``-1``) of ``p``."""
-    cx = p.x - side * rho * math.sin(p.theta)
-    cy = p.y + side * rho * math.cos(p.theta)
-    th = p.theta + side * turn
-    return Pose(
-        cx + side * rho * math.sin(th), cy - side * rho * math.cos(th), math.remainder(th, 2 * math.pi)
-    )
+    """:func:`segplan.pose.arc_end` of ``p`` as a Pose, its heading in ``[-pi, pi]``."""
+    x, y, th = arc_end(p.x, p.y, p.theta, rho, side, turn)
+    return Pose(x, y, math.remainder(th, 2 * math.pi))
 
 
 def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:
@@ -129,13 +124,12 @@ def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:
 
 
 def escape_pairs(starts: list[Arc], goals: list[Arc], start, goal, R: float) -> list[tuple]:
-    """``(start_arc or None, goal_arc or None)``, every combination but the empty one, cheapest
-    first by arc costs plus the Dubins length (radius ``R``) between the inner poses."""
-    s = [None, *starts]
-    g = [None, *goals]
+    """``(estimate, start_arc or None, goal_arc or None)`` for every combination but the
+    empty one, cheapest first by the estimate: the arcs' costs plus the Dubins length
+    (radius ``R``) between their inner poses."""
     pairs = []
-    for a in s:
-        for b in g:
+    for a in (None, *starts):
+        for b in (None, *goals):
             if a is None and b is None:
                 continue
             p0 = a.inner if a else Pose(*start)
@@ -143,7 +137,7 @@ def escape_pairs(starts: list[Arc], goals: list[Arc], start, goal, R: float) -> 
             est = (a.cost if a else 0.0) + (b.cost if b else 0.0) + dubins_length_scalar(*p0, *p1, R)
             pairs.append((est, len(pairs), a, b))
     pairs.sort(key=lambda t: t[:2])
-    return [(a, b) for _, _, a, b in pairs]
+    return [(est, a, b) for est, _, a, b in pairs]
 
 
 #: At most this many searches between the inner poses of arc pairs.
@@ -182,7 +176,7 @@ def escape_search(scenario, ws, exc, search, max_expansions: int, deadline: floa
     starts = tight_arcs(ws, links, scenario.start, R) if exc.escapable == "both" else []
     goals = tight_arcs(ws, links, scenario.goal, R, into=True)
     used = exc.expanded
-    for a, b in escape_pairs(starts, goals, scenario.start, scenario.goal, R)[:MAX_ESCAPES]:
+    for _, a, b in escape_pairs(starts, goals, scenario.start, scenario.goal, R)[:MAX_ESCAPES]:
         left = deadline - time.perf_counter()
         if used >= max_expansions or left <= 0:
             break
@@ -223,12 +217,10 @@ def improve_with_arcs(scenario, ws, plan, t0: float):
     links = LinkModel(ws)
     pairs = escape_pairs(tight_arcs(ws, links, s, R), tight_arcs(ws, links, g, R, into=True), s, g, R)
     best = plan
-    for a, b in pairs:
-        p0, p1 = (a.inner if a else s), (b.inner if b else g)
-        ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
-        if ends + dubins_length_scalar(*p0, *p1, R) >= best.cost:
+    for est, a, b in pairs:
+        if est >= best.cost:
             break  # ordered by this estimate: no later pair can win
-        u = links.union(p0, p1)
+        u = links.union(a.inner if a else s, b.inner if b else g)
         if u is not None and ws.union_free(u):
             cand = _join(scenario, a, (u,), b, plan.expanded, t0, plan)
             if cand.cost < best.cost:

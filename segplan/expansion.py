@@ -90,7 +90,7 @@ from dataclasses import dataclass
 
 from .bisectrix import iterate_pose, outward_bisectors, tangent_vertices
 from .links import LinkModel
-from .pose import HALF_PI, Pose, wrap_fmod
+from .pose import HALF_PI, Pose, arc_end, wrap_fmod
 from .union import Union
 from .validity import ExpansionStats, Workspace
 
@@ -427,10 +427,8 @@ class Expander:
         out = []
         for beta in self.turn_angles:
             for side in (1.0, -1.0):
-                # centre at the side, point after turning by beta
-                cx, cy = x - side * R * math.sin(th), y + side * R * math.cos(th)
-                t = th + side * beta
-                out.append(Pose(cx + side * R * math.sin(t), cy - side * R * math.cos(t), wrap_fmod(t)))
+                ax, ay, t = arc_end(x, y, th, R, side, beta)
+                out.append(Pose(ax, ay, wrap_fmod(t)))
         return out
 
     def approach_states(self, goal: Pose) -> list[tuple[Pose, Union]]:

@@ -72,7 +72,7 @@ from .dubins import dubins_length_scalar
 from .escape import escape_search, improve_with_arcs
 from .frame import heuristic_coefficients
 from .links import LinkModel
-from .path import NoPathError, Plan, check_limits, check_option, direct_plan, union_longd
+from .path import NoPathError, check_limits, check_option, direct_plan, lattice_plan, union_longd
 from .pose import Pose
 from .primitives import fine_points, heading_angles, heading_tables, max_reach, primitive_set
 from .shortcut import shortcut_plan
@@ -277,38 +277,23 @@ class _LatticeSearch(GoalApproaches, Guided):
         return out
 
     def make_plan(self, edges, final, expanded, t0):
-        """A :class:`segplan.search.Plan` of lattice edges and the final unions to the goal (a list)."""
+        """A :class:`segplan.search.Plan` of lattice edges and the final unions to the goal (a
+        list): :func:`segplan.path.lattice_plan`."""
 
-        nodes = [Pose(*self.start)]
         unions = []
         cost = 0.0
         for key, m in edges:
-            u = self.union(key, m)
-            unions.append(u)
-            nodes.append(u.p1)
+            unions.append(self.union(key, m))
             cost += self.cost[key[2]][m]
         kinds = ["start"] + ["lattice"] * len(edges)
         for k, u in enumerate(final or []):
             unions.append(u)
-            nodes.append(u.p1)
             cost += union_longd(u)
             kinds.append("goal" if k == len(final) - 1 else "approach")
-        st = self.ws.stats
-        return Plan(
-            nodes=tuple(nodes),
-            unions=tuple(unions),
-            cost=cost,
-            search_cost=self.goal_g if final is not None else cost,
-            expanded=expanded,
-            generated=len(self.g),
-            seconds=time.perf_counter() - t0,
-            heuristic="dubins",
-            cost_kind="longd",
-            version="lattice",
-            collision_checks=st.collision_checks,
-            exact_checks=st.exact_checks,
-            iterations=(),
-            kinds=tuple(kinds),
+        search_cost = self.goal_g if final is not None else cost
+        seconds = time.perf_counter() - t0
+        return lattice_plan(
+            Pose(*self.start), unions, kinds, cost, search_cost, expanded, len(self.g), seconds, self.ws.stats
         )
 
 
@@ -390,8 +375,8 @@ def lattice_options(
     scenario, *, resolution=None, weight=2.0, retry=True, analytic_every=8, goal_radius=None, cell=None,
     escapes=True,
 ):  # fmt: skip
-    """The options of :func:`lattice_search` checked (ValueError naming a bad one), in this
-    order without ``escapes``; :func:`segplan.plan_scenario` checks them even where it
+    """The options of :func:`lattice_search` checked (ValueError naming a bad one), as a
+    dict without ``escapes``; :func:`segplan.plan_scenario` checks them even where it
     does not run the lattice."""
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
@@ -402,38 +387,25 @@ def lattice_options(
     for name, flag in (("retry", retry), ("escapes", escapes)):
         if not isinstance(flag, bool):
             raise ValueError(f"{name} must be True or False, got {flag!r}")
-    return (
-        resolution,
-        check_option(weight, "weight", 1.0, lo_ok=True),  # 1: the admissible h'
-        retry,
-        check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True),
-        check_option(goal_radius, "goal_radius", 0.0, allow_none=True),
-        check_option(cell, "cell", 0.0, allow_none=True),
-    )
+    return {
+        "resolution": resolution,
+        "weight": check_option(weight, "weight", 1.0, lo_ok=True),  # 1: the admissible h'
+        "retry": retry,
+        "analytic_every": check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True),
+        "goal_radius": check_option(goal_radius, "goal_radius", 0.0, allow_none=True),
+        "cell": check_option(cell, "cell", 0.0, allow_none=True),
+    }
 
 
 def _lattice_search(
-    scenario,
-    *,
-    resolution=None,
-    weight=2.0,
-    max_expansions=None,
-    time_limit=10.0,
-    retry=True,
-    analytic_every=8,
-    goal_radius=None,
-    cell=None,
-    t0=None,
-    workspace=None,
-):
-    """:func:`lattice_search` without the escapes (one lattice search, its retry)."""
+    scenario, *, resolution, weight, retry, analytic_every, goal_radius, cell, max_expansions, time_limit, t0,
+    workspace,
+):  # fmt: skip
+    """:func:`lattice_search` without the escapes (one lattice search, its retry); the
+    options checked by :func:`lattice_options`."""
 
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
-    resolution, weight, retry, analytic_every, goal_radius, cell = lattice_options(
-        scenario, resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every,
-        goal_radius=goal_radius, cell=cell,
-    )  # fmt: skip
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
     if max_expansions is None:
         max_expansions = LATTICE_MAX_EXPANSIONS
@@ -568,11 +540,12 @@ def lattice_search(
     their ends while the limits allow; when its plan costs far more than the Dubins
     length, try the paper's direct union between their ends.
     """
-    lattice_options(scenario, retry=retry, escapes=escapes)
+    options = lattice_options(
+        scenario, resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every,
+        goal_radius=goal_radius, cell=cell, escapes=escapes,
+    )  # fmt: skip
     t0 = time.perf_counter() if t0 is None else t0
-    options = dict(resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every)
-    options.update(goal_radius=goal_radius, cell=cell)
-    if isinstance(scenario, Scenario) and workspace is None:
+    if workspace is None:
         robot = scenario.robot
         workspace = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
 

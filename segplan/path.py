@@ -23,6 +23,7 @@ __all__ = [
     "check_limits",
     "check_option",
     "direct_plan",
+    "lattice_plan",
     "union_longd",
     "unions_longd",
 ]
@@ -203,19 +204,17 @@ class Plan:
         }
 
 
-def direct_plan(start, u, seconds: float, stats) -> Plan:
-    """The lattice planner's plan of one free union ``u`` from ``start`` (or of none: the
-    start is the goal); ``stats`` the workspace's counters (``collision_checks``,
-    ``exact_checks``)."""
-    unions = () if u is None else (u,)
-    cost = unions_longd(unions)
+def lattice_plan(start, unions, kinds, cost, search_cost, expanded, generated, seconds, stats) -> Plan:
+    """A :class:`Plan` of the lattice planner (``version="lattice"``, Dubins h', LONGD cost):
+    the nodes are ``start`` and the unions' ends; ``stats`` the workspace's counters
+    (``collision_checks``, ``exact_checks``)."""
     return Plan(
-        nodes=(start,) + tuple(v.p1 for v in unions),
-        unions=unions,
+        nodes=(start,) + tuple(u.p1 for u in unions),
+        unions=tuple(unions),
         cost=cost,
-        search_cost=cost,
-        expanded=0 if u is None else 1,
-        generated=1 + len(unions),
+        search_cost=search_cost,
+        expanded=expanded,
+        generated=generated,
         seconds=seconds,
         heuristic="dubins",
         cost_kind="longd",
@@ -223,5 +222,23 @@ def direct_plan(start, u, seconds: float, stats) -> Plan:
         collision_checks=stats.collision_checks,
         exact_checks=stats.exact_checks,
         iterations=(),
-        kinds=("start",) + ("goal",) * len(unions),
+        kinds=tuple(kinds),
+    )
+
+
+def direct_plan(start, u, seconds: float, stats) -> Plan:
+    """The lattice planner's plan of one free union ``u`` from ``start`` (or of none: the
+    start is the goal): :func:`lattice_plan`."""
+    unions = () if u is None else (u,)
+    cost = unions_longd(unions)
+    return lattice_plan(
+        start,
+        unions,
+        ("start",) + ("goal",) * len(unions),
+        cost,
+        cost,
+        len(unions),
+        1 + len(unions),
+        seconds,
+        stats,
     )

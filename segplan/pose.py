@@ -32,6 +32,7 @@ __all__ = [
     "Intrinsic",
     "Pose",
     "alpha_interval",
+    "arc_end",
     "as_pose",
     "as_poses",
     "check_alpha",
@@ -174,6 +175,19 @@ def wrap_scalar(a: float) -> float:
     if a <= -math.pi:
         return a + 2.0 * math.pi
     return a - 2.0 * math.pi if a > math.pi else a
+
+
+def arc_end(x: float, y: float, theta: float, radius: float, side: float, turn: float):
+    """The rear point after driving ``turn`` radians (negative: backwards) along the circle
+    of ``radius`` to the left (``side = 1``) or the right (``-1``) of the pose ``(x, y,
+    theta)``: ``(x, y, heading)``, the heading not wrapped (each caller wraps it its own way).
+
+    The paper's turn states (:meth:`segplan.expansion.Expander.turn_states`) and the tight
+    arcs of :mod:`segplan.escape` are such poses.
+    """
+    cx, cy = x - side * radius * math.sin(theta), y + side * radius * math.cos(theta)
+    t = theta + side * turn
+    return cx + side * radius * math.sin(t), cy - side * radius * math.cos(t), t
 
 
 def wrap_fmod(a: float) -> float:
