@@ -9,10 +9,11 @@ certified test). Expanded states near the goal then try unions to the most promi
 these *approach states* (``g`` + Dubins length + the approach's cost), and a success
 puts the goal in the open list with the whole chain.
 
-**A goal that looks enclosed** (:meth:`GoalApproaches.enclosed`): after
-:data:`ENCLOSURE_AFTER` expansions without a plan the tree is grown to
-:data:`ENCLOSURE_LIMIT` states (4 times as many at half the cell); if it runs out of
-states first and no free union joins the start to one of them, the goal can be reached
+**A goal that looks enclosed** (:meth:`GoalApproaches.enclosed`): when the tree runs out
+of states, or after :data:`ENCLOSURE_AFTER` expansions without a plan a flood fill over
+the grid's screen alone finds at most :data:`ENCLOSURE_LIMIT` states that reach the goal
+by primitives (4 times as many at half the cell, and more for a robot that turns wider
+than ``L``), and no free union joins the start to one of them, the goal can be reached
 neither by that lattice's primitives nor by a union from the start. A union from a state
 of the start's lattice might still reach it, so this is no proof: the search goes on for
 :data:`ENCLOSED_EXPANSIONS` expansions, then stops with ``reason="expansions"`` and says
@@ -34,6 +35,7 @@ from .union import Union, cubic_coefficients
 
 __all__ = [
     "APPROACH_CANDIDATES",
+    "APPROACH_GROWTH",
     "ENCLOSED_EXPANSIONS",
     "ENCLOSURE_AFTER",
     "ENCLOSURE_LIMIT",
@@ -52,6 +54,12 @@ APPROACH_CANDIDATES = 8
 #: 4 per halving of the resolution).
 ENCLOSURE_AFTER = 256
 ENCLOSURE_LIMIT = 300
+#: States the approach tree grows to after :data:`ENCLOSURE_AFTER` expansions without a plan
+#: (at ``L / 8``; scaled as ``ENCLOSURE_LIMIT``): more targets for the search's unions. Its
+#: edges pass the certified test, so it grows at a cost; the enclosure test counts states
+#: by the grid's screen alone (:meth:`GoalApproaches.reach_all`). On the 400 random floors
+#: of chapter 9 growing it to ``ENCLOSURE_LIMIT`` found no plan that 120 did not.
+APPROACH_GROWTH = 120
 #: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
 #: the start's lattice may still reach it: not a proof), before it stops.
 ENCLOSED_EXPANSIONS = 512
@@ -136,6 +144,10 @@ class GoalApproaches:
             origin=self.grid.to_lattice(np.array(self.goal[:2])),
             pts_in=[np.stack([self.prims[h0][m].points for h0, m in e]) @ rot.T if e else None for e in into],
             dl_in=[np.array([self.prims[h0][m].delta for h0, m in e]) + 1e-9 if e else None for e in into],
+            steps_in=[
+                np.array([(self.prims[h0][m].di, self.prims[h0][m].dj, h0) for h0, m in e]).reshape(-1, 3)
+                for e in into
+            ],
             cost={(0, 0, 0): 0.0},
             done=set(),
             heap=[(0.0, (0, 0, 0))],
@@ -199,19 +211,19 @@ class GoalApproaches:
             else np.zeros((0, 3))
         )
 
-    def start_joins(self) -> bool:
-        """Does a free union within the steering limit join the start to an approach state?
+    def start_joins(self, poses: np.ndarray) -> bool:
+        """Does a free union within the steering limit join the start to one of ``poses``?
 
-        With ``approach_exhausted`` (and no budget) the approach states are every state
-        of the goal's lattice that reaches the goal: if the start joins none of them (nor
-        the goal, which the planner tries first), no plan made of a union from the start
-        and a chain of primitives in the goal's frame exists, the backward counterpart of
-        an exhausted search on the start's lattice.
+        ``poses``: every state of the goal's lattice that reaches the goal (the approach
+        tree exhausted, or :meth:`reach_all`): if the start joins none of them (nor the
+        goal, which the planner tries first), no plan made of a union from the start and a
+        chain of primitives in the goal's frame exists, the backward counterpart of an
+        exhausted search on the start's lattice.
         """
-        if not len(self.approach_keys):
+        if not len(poses):
             return False
         P = tuple(self.start)
-        for Q in self.approach_poses.tolist():  # every one (no screen: this decides a NoPathError)
+        for Q in poses.tolist():  # every one (no screen: this decides a NoPathError)
             u = self.ex.union(Pose(*P), Pose(*Q))
             if u is None or not self.ws.curvature_ok(u):
                 continue
@@ -255,38 +267,72 @@ class GoalApproaches:
             u = self.ex.union(Pose(*P), Q)
             if u is None or not self.ws.curvature_ok(u):
                 continue
-            c = self.ex.link_cost(u)
-            total = g + c + float(self.approach_cost[k])
+            known = self.goal_g < math.inf  # LONGD first only if it may prune (else after the screen)
+            total = g + self.ex.link_cost(u) + float(self.approach_cost[k]) if known else 0.0
             if not total < self.goal_g:
                 continue
             pts, dl = union_points(u)
             free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
             if bad[0] or not (free[0] or self.certified(u, pts, dl)):
                 continue
+            total = total if known else g + self.ex.link_cost(u) + float(self.approach_cost[k])
             self.goal_g = total
             self.goal_parent = (key, [u] + self.approach_chain(self.approach_keys[k]))
             heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
+    def reach_all(self, limit: int) -> np.ndarray | None:
+        """Poses of all the states of the goal's lattice from which a chain of primitives
+        reaches the goal, no point of it in a blocked cell of the grid; None if more than
+        ``limit``.
+
+        A superset of the states the approach tree can ever hold (its edges also pass the
+        certified test), found at a fraction of its cost: a flood fill over the grid's
+        screen only (the order of the states does not matter for their number).
+        """
+        b = self._back
+        into, rot, origin, pts_in, dl_in = b["into"], b["rot"], b["origin"], b["pts_in"], b["dl_in"]
+        seen = {(0, 0, 0)}
+        todo = [(0, 0, 0)]
+        while todo:
+            i, j, h = todo.pop()
+            if not into[h]:
+                continue
+            back = b["steps_in"][h]
+            base = origin + ((i, j) - back[:, :2]) * self.r @ rot.T
+            _, bad = self.grid.screen(pts_in[h] + base[:, None, :], dl_in[h])
+            for k in np.flatnonzero(~bad).tolist():
+                prev = (i - int(back[k, 0]), j - int(back[k, 1]), int(back[k, 2]))
+                if prev not in seen:
+                    if len(seen) > limit:
+                        return None
+                    seen.add(prev)
+                    todo.append(prev)
+        seen.discard((0, 0, 0))
+        return np.array([self.goal_pose(k) for k in sorted(seen)]).reshape(-1, 3)
+
     def enclosed(self, expanded: int) -> bool:
         """Grow the goal's approach tree when due; True if the goal looks enclosed.
 
-        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions
-        and grown to ``enclosure_limit`` states after :data:`ENCLOSURE_AFTER`. If it runs
-        out of states first, it holds every state of the goal's lattice that reaches the
-        goal by primitives; if no union joins the start to any of them
-        (:meth:`start_joins`), no plan made of a union and such primitives exists. A union
-        from a state of the start's lattice may still reach the goal (not a proof): the
-        search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
+        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions.
+        If it runs out of states, it holds every state of the goal's lattice that reaches
+        the goal by primitives. Otherwise, after :data:`ENCLOSURE_AFTER` expansions without
+        a plan, :meth:`reach_all` counts such states (a superset) up to
+        ``enclosure_limit``. If they are all known and no union joins the start to any of
+        them (:meth:`start_joins`), no plan made of a union and such primitives exists. A
+        union from a state of the start's lattice may still reach the goal (not a proof):
+        the search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
+        ``enclosure_states`` is then the number of those states.
         """
         if self.approach_keys is None and expanded >= self.approach_after:
             self.build_approaches(self.approach_budget, self.approach_limit)
-        elif (
-            self.approach_keys is not None
-            and not self.approach_exhausted
-            and expanded >= ENCLOSURE_AFTER
-            and len(self.approach_keys) < self.enclosure_limit
-        ):
-            self.grow_approaches(self.enclosure_limit)
+            poses = self.approach_poses if self.approach_exhausted else None
+        elif self.approach_keys is not None and expanded == max(ENCLOSURE_AFTER, self.approach_after):
+            if not self.approach_exhausted:  # more targets for the search's unions
+                self.grow_approaches(int(round(APPROACH_GROWTH * self.enclosure_limit / ENCLOSURE_LIMIT)))
+            poses = self.approach_poses if self.approach_exhausted else self.reach_all(self.enclosure_limit)
         else:
             return False
-        return self.approach_exhausted and not self.start_joins()
+        if poses is None:
+            return False
+        self.enclosure_states = len(poses)
+        return not self.start_joins(poses)

@@ -110,9 +110,10 @@ class _LatticeSearch(GoalApproaches, Guided):
         self.banned = banned
         self.approach_after, self.approach_tries, self.approach_limit = 32, 2, 60
         self.approach_budget = math.inf  # the nearest approach_limit states (all, if fewer)
-        # the goal's enclosure test: the approach tree grown to this many states (more on a
-        # finer lattice) after ENCLOSURE_AFTER expansions without a plan
-        self.enclosure_limit = int(round(ENCLOSURE_LIMIT * (0.125 * self.L / r) ** 2))
+        # the goal's enclosure test: states that reach the goal counted up to this many (more
+        # on a finer lattice, and for a robot whose turns, so pockets, are wider than L)
+        wider = max(1.0, self.R / self.L) ** 2
+        self.enclosure_limit = int(round(ENCLOSURE_LIMIT * (0.125 * self.L / r) ** 2 * wider))
         ps = primitive_set(robot.L, robot.max_steer, r)
         self.prims = ps.by_heading
         th = self.start.theta
@@ -169,13 +170,15 @@ class _LatticeSearch(GoalApproaches, Guided):
         u = self.ex.union(Pose(*P), self.goal)
         if u is None or not self.ws.curvature_ok(u):
             return
-        c = self.ex.link_cost(u)
+        known = self.goal_g < math.inf  # LONGD first only if it may prune (else after the screen)
+        c = self.ex.link_cost(u) if known else 0.0
         if not g + c < self.goal_g:
             return
         pts, dl = union_points(u)
         free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
         if bad[0] or not (free[0] or self.certified(u, pts, dl)):
             return
+        c = c if known else self.ex.link_cost(u)
         self.goal_g, self.goal_parent = g + c, (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
@@ -483,7 +486,7 @@ def _lattice_search(
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
         expanded_total += expanded
-        proofs.append((r, outcome, len(search.approach_keys or ())))
+        proofs.append((r, outcome, getattr(search, "enclosure_states", 0)))
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
             if outcome == "exhausted":

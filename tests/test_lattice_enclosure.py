@@ -123,3 +123,84 @@ def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
     scalar = run()
     assert vector == scalar
     assert vector[1] > 0 and any(isinstance(x, tuple) and x[0] for x in vector[0])
+
+
+def _search_of(sc, monkeypatch, **kw):
+    """The lattice search object of a lattice_search call on ``sc`` (its first try)."""
+    seen = []
+    run = lt._LatticeSearch.run
+
+    def spy(self, *a):
+        seen.append(self)
+        return run(self, *a)
+
+    monkeypatch.setattr(lt._LatticeSearch, "run", spy)
+    try:
+        lt.lattice_search(sc, **kw)
+    except NoPathError:
+        pass
+    return seen[0]
+
+
+@pytest.mark.parametrize("goal", [(0.86, 1.52, 0.09), (8.86, 4.5, 0.0), (6.0, 3.26, -1.3)])
+def test_reach_all_holds_every_state_of_the_approach_tree(monkeypatch, goal):
+    """The enclosure test's flood fill (grid screen only) finds a superset of the states the
+    certified approach tree reaches, so "looks enclosed" by it implies so by the tree.
+    Goals facing away from a wall or an obstacle a few decimetres behind them (pockets)."""
+    robot = Robot(1.0, 0.3, 45 * DEG)
+    box = [[4.0, 4.0], [8.0, 4.0], [8.0, 5.0], [4.0, 5.0]]
+    sc = make_scenario(robot, (15.0, 8.0, math.pi), goal, [box], (0.0, 0.0, 20.0, 12.0))
+    s = _search_of(sc, monkeypatch, max_expansions=40, retry=False, escapes=False)
+    if s.approach_keys is None:
+        s.build_approaches(math.inf, 60)
+    s.grow_approaches(5000)
+    assert s.approach_exhausted
+    tree = {tuple(np.round(p, 9)) for p in s.approach_poses.tolist()}
+    everything = s.reach_all(5000)
+    assert everything is not None
+    flood = {tuple(np.round(p, 9)) for p in everything.tolist()}
+    assert tree <= flood
+    n = len(flood)  # the limit: all of them up to it, None beyond
+    assert len(s.reach_all(n)) == n
+    assert n == 0 or s.reach_all(n - 1) is None
+
+
+def test_reach_all_counts_the_wall_pocket(monkeypatch):
+    """The goal facing away from a wall a few decimetres behind it: a handful of states."""
+    s = _search_of(_wall_goal(), monkeypatch, max_expansions=40, retry=False, escapes=False)
+    if s.approach_keys is None:
+        s.build_approaches(math.inf, 60)
+    poses = s.reach_all(s.enclosure_limit)
+    assert poses is not None and len(poses) < 20
+    assert not s.start_joins(poses)
+
+
+def test_enclosure_limit_grows_with_the_turning_radius(monkeypatch):
+    """Pockets scale with the turning radius: a robot turning wider than L counts more states."""
+    wide = Robot(1.0, 0.3, 25 * DEG)  # R = L / tan(25 deg), about 2.1 L
+    sc = make_scenario(wide, (15.0, 6.0, math.pi), (6.0, 6.0, 0.0), [], (0.0, 0.0, 20.0, 12.0))
+    s = _search_of(sc, monkeypatch, max_expansions=5, retry=False, escapes=False)
+    expected = lt.ENCLOSURE_LIMIT * (wide.min_turning_radius / wide.L) ** 2
+    assert s.enclosure_limit == pytest.approx(expected, abs=1.0)
+
+
+def test_default_planner_caps_the_papers_search(monkeypatch):
+    """The default planner runs the paper's search within api.PAPER_EXPANSIONS expansions
+    (and within a smaller max_expansions if given); planner="paper" keeps its own default."""
+    from segplan import api
+
+    calls = []
+    plan = api._plan
+
+    def spy(*a, **kw):
+        calls.append(kw["max_expansions"])
+        return plan(*a, **kw)
+
+    monkeypatch.setattr(api, "_plan", spy)
+    sc = _wall_goal()
+    for kw in ({}, {"max_expansions": 10}):
+        with pytest.raises(NoPathError):
+            plan_scenario(sc, time_limit=5.0, **kw)
+    with pytest.raises(NoPathError):
+        plan_scenario(sc, planner="paper")
+    assert calls == [api.PAPER_EXPANSIONS, 10, 3000]
