@@ -61,8 +61,11 @@ ENCLOSURE_LIMIT = 300
 #: of chapter 9 growing it to ``ENCLOSURE_LIMIT`` found no plan that 120 did not.
 APPROACH_GROWTH = 120
 #: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
-#: the start's lattice may still reach it: not a proof), before it stops.
-ENCLOSED_EXPANSIONS = 512
+#: the start's lattice may still reach it: not a proof), before it stops. On the 400 random
+#: floors of chapter 9, my 100 "walls close ahead" floors and 80 floors of varied robots, the
+#: plans found after the goal looked enclosed came 34 and 125 expansions later (any-086,
+#: natural-066); 512 before made every such failure about 0.45 s long, 192 about 0.3 s.
+ENCLOSED_EXPANSIONS = 192
 
 #: Frames sampled per pose pair by :func:`steerable`, abscissae (fractions of the span).
 _FRAMES = (np.arange(1, 8) / 8.0)[None, :, None]

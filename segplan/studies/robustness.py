@@ -408,13 +408,16 @@ def variant_label(options: dict) -> str:
 
 def warm_up(options: dict | None = None) -> float:
     """The process's one-time set-up of segplan (s), excluded from the times like OMPL's
-    library load: :func:`segplan.studies.peers.warm_up` and one plan with ``options``."""
+    library load: :func:`segplan.studies.peers.warm_up` and plans with ``options`` on two
+    floors, one the paper's search solves and one that needs the lattice and its coarse
+    guide (their first use imports scipy's graph routines, about 0.2 s)."""
     t0 = time.perf_counter()
     peers.warm_up()
-    try:
-        plan_scenario(fl.random_floor("natural", 0), **(options or {}))
-    except NoPathError:
-        pass
+    for kind, index in (("natural", 0), ("any", 6)):
+        try:
+            plan_scenario(fl.random_floor(kind, index), **(options or {}))
+        except NoPathError:
+            pass
     return time.perf_counter() - t0
 
 
