@@ -28,6 +28,7 @@ slower machine.
 
 from __future__ import annotations
 
+import contextlib
 import datetime
 import gzip
 import json
@@ -101,8 +102,7 @@ TURN_AROUND_PLANNERS = ("RRTstar", "InformedRRTstar", "BITstar")
 TURN_AROUND_SEEDS = (1, 2, 3, 4, 5)
 #: 160 x 96 m floors with 512 obstacles, one crossing each.
 N_LARGE = 6
-#: The size sweep: scales s of the 20 x 12 m room (obstacles 8 s^2), obstacle counts on the
-#: 160 x 96 m room, and crossings per point.
+#: Size sweep: scales s of the 20 x 12 m room (8 s^2 obstacles), counts on 160 x 96 m, crossings.
 SWEEP_SCALES = (1.0, 2.0**0.5, 2.0, 2.0**1.5, 4.0, 2.0**2.5, 8.0)
 SWEEP_COUNTS = (0, 32, 128, 512)
 SWEEP_CROSSINGS = 2
@@ -407,17 +407,14 @@ def variant_label(options: dict) -> str:
 
 
 def warm_up(options: dict | None = None) -> float:
-    """The process's one-time set-up of segplan (s), excluded from the times like OMPL's
-    library load: :func:`segplan.studies.peers.warm_up` and plans with ``options`` on two
-    floors, one the paper's search solves and one that needs the lattice and its coarse
-    guide (their first use imports scipy's graph routines, about 0.2 s)."""
+    """The process's one-time set-up of segplan (s), excluded from the times like OMPL's library
+    load: :func:`segplan.studies.peers.warm_up` and plans with ``options`` on natural-0 (the paper's
+    search) and any-6 (the lattice and its guide: their first use imports scipy's graphs)."""
     t0 = time.perf_counter()
     peers.warm_up()
     for kind, index in (("natural", 0), ("any", 6)):
-        try:
+        with contextlib.suppress(NoPathError):
             plan_scenario(fl.random_floor(kind, index), **(options or {}))
-        except NoPathError:
-            pass
     return time.perf_counter() - t0
 
 
