@@ -159,6 +159,15 @@ class GoalApproaches:
         self.approach_next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
         self.grow_approaches(limit)
 
+    def _into(self, i: int, j: int, h: int):
+        """The primitives into the state ``(i, j, h)`` of the goal's lattice (those of
+        ``self._back["into"][h]``): their start points in the lattice frame and the grid's
+        screen of their points (certainly free, certainly failing)."""
+        b = self._back
+        base = b["origin"] + ((i, j) - b["steps_in"][h][:, :2]) * self.r @ b["rot"].T
+        free, bad = self.grid.screen(b["pts_in"][h] + base[:, None, :], b["dl_in"][h])
+        return base, free, bad
+
     def grow_approaches(self, limit: int):
         """Resume :meth:`build_approaches` until ``limit`` states (or none is left).
 
@@ -167,7 +176,7 @@ class GoalApproaches:
         primitives reaches the goal (with ``budget`` infinite; see :meth:`start_joins`).
         """
         b = self._back
-        into, rot, origin, pts_in, dl_in = b["into"], b["rot"], b["origin"], b["pts_in"], b["dl_in"]
+        into, rot = b["into"], b["rot"]
         cost, done, heap, out, nxt = b["cost"], b["done"], b["heap"], b["out"], self.approach_next
         budget, grid, goal_key = self.approach_budget_used, self.grid, (0, 0, 0)
         while heap and len(out) < limit:
@@ -180,11 +189,7 @@ class GoalApproaches:
             i, j, h = key
             if not into[h]:
                 continue
-            starts = (
-                np.array([(i - self.prims[h0][m].di, j - self.prims[h0][m].dj) for h0, m in into[h]]) * self.r
-            )
-            base = origin + starts @ rot.T  # the primitives' start points, lattice frame
-            free, bad = grid.screen(pts_in[h] + base[:, None, :], dl_in[h])
+            base, free, bad = self._into(i, j, h)
             for k, (h0, m) in enumerate(into[h]):
                 p = self.prims[h0][m]
                 prev = (i - p.di, j - p.dj, h0)
@@ -270,16 +275,14 @@ class GoalApproaches:
             u = self.ex.union(Pose(*P), Q)
             if u is None or not self.ws.curvature_ok(u):
                 continue
-            known = self.goal_g < math.inf  # LONGD first only if it may prune (else after the screen)
-            total = g + self.ex.link_cost(u) + float(self.approach_cost[k]) if known else 0.0
-            if not total < self.goal_g:
+            # LONGD before the screen only where it may prune (the link model keeps it per union)
+            if self.goal_g < math.inf and not g + self.ex.link_cost(u) + self.approach_cost[k] < self.goal_g:
                 continue
             pts, dl = union_points(u)
             free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
             if bad[0] or not (free[0] or self.certified(u, pts, dl)):
                 continue
-            total = total if known else g + self.ex.link_cost(u) + float(self.approach_cost[k])
-            self.goal_g = total
+            self.goal_g = g + self.ex.link_cost(u) + float(self.approach_cost[k])
             self.goal_parent = (key, [u] + self.approach_chain(self.approach_keys[k]))
             heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
@@ -292,17 +295,15 @@ class GoalApproaches:
         certified test), found at a fraction of its cost: a flood fill over the grid's
         screen only (the order of the states does not matter for their number).
         """
-        b = self._back
-        into, rot, origin, pts_in, dl_in = b["into"], b["rot"], b["origin"], b["pts_in"], b["dl_in"]
+        into, steps_in = self._back["into"], self._back["steps_in"]
         seen = {(0, 0, 0)}
         todo = [(0, 0, 0)]
         while todo:
             i, j, h = todo.pop()
             if not into[h]:
                 continue
-            back = b["steps_in"][h]
-            base = origin + ((i, j) - back[:, :2]) * self.r @ rot.T
-            _, bad = self.grid.screen(pts_in[h] + base[:, None, :], dl_in[h])
+            back = steps_in[h]
+            _, _, bad = self._into(i, j, h)
             for k in np.flatnonzero(~bad).tolist():
                 prev = (i - int(back[k, 0]), j - int(back[k, 1]), int(back[k, 2]))
                 if prev not in seen:

@@ -170,16 +170,14 @@ class _LatticeSearch(GoalApproaches, Guided):
         u = self.ex.union(Pose(*P), self.goal)
         if u is None or not self.ws.curvature_ok(u):
             return
-        known = self.goal_g < math.inf  # LONGD first only if it may prune (else after the screen)
-        c = self.ex.link_cost(u) if known else 0.0
-        if not g + c < self.goal_g:
+        # LONGD before the screen only where it may prune (the link model keeps it per union)
+        if self.goal_g < math.inf and not g + self.ex.link_cost(u) < self.goal_g:
             return
         pts, dl = union_points(u)
         free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
         if bad[0] or not (free[0] or self.certified(u, pts, dl)):
             return
-        c = c if known else self.ex.link_cost(u)
-        self.goal_g, self.goal_parent = g + c, (key, [u])
+        self.goal_g, self.goal_parent = g + self.ex.link_cost(u), (key, [u])
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
     def run(self, max_expansions: int, deadline: float):
@@ -189,6 +187,7 @@ class _LatticeSearch(GoalApproaches, Guided):
         self.goal_g, self.goal_parent = math.inf, None
         self.certified_calls = 0
         self.approach_keys = None
+        self.enclosure_states = 0  # set by the enclosure test (GoalApproaches.enclosed)
         self.ctg = None
         self.heap = [(self.h(0.0, 0.0, 0), 0, start)]
         closed = set()
@@ -486,7 +485,7 @@ def _lattice_search(
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
         expanded_total += expanded
-        proofs.append((r, outcome, getattr(search, "enclosure_states", 0)))
+        proofs.append((r, outcome, search.enclosure_states))
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
             if outcome == "exhausted":
