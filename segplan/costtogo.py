@@ -16,8 +16,14 @@ lies in a cell wholly inside an obstacle or beyond a wall
 (:attr:`segplan.clearance.ClearanceGrid.blocked`). The goal is seeded by the coarse states
 near it, each with its distance to the goal (the paper's final union is not on the lattice).
 It is an estimate, not a bound (the coarse lattice rounds), which the weighted search does
-not need; where it is infinite (no coarse route) the search falls back to the
-two bounds, so completeness on the search's lattice is not touched.
+not need. Where it is infinite (no coarse route) the state is ranked after the states that
+have one: its ``h'`` is its two bounds plus the field's largest finite cost-to-go
+(:attr:`HeadingField.worst`). It stays in the open list, so completeness on the search's
+lattice is not touched. (Falling back to the bounds alone ranked such states *first*, as the
+bounds lie below the estimates: for robots that turn widely, whose coarse primitives leave
+most coarse states without a route, the search flooded them.) Where the start itself has no
+coarse route, the field is built again on a lattice twice as fine (``L / FINER_CELLS``) and
+kept if the start has a route there.
 """
 
 from __future__ import annotations
@@ -32,6 +38,7 @@ from .primitives import NH, heading_angles, heading_tables, primitive_set
 
 __all__ = [
     "COARSE_CELLS",
+    "FINER_CELLS",
     "GUIDED_WEIGHT",
     "GUIDE_AFTER",
     "MAX_STATES",
@@ -42,6 +49,8 @@ __all__ = [
 
 #: The coarse lattice's cell: ``L / COARSE_CELLS`` (a stored primitive set).
 COARSE_CELLS = 2
+#: The finer coarse lattice (``L / FINER_CELLS``) tried where the start has no coarse route.
+FINER_CELLS = 4
 #: Coarse lattices larger than this many states are not built (the search keeps its bounds).
 MAX_STATES = 400_000
 #: Coarse states within this many coarse cells of the goal, at most one heading step from
@@ -78,7 +87,11 @@ class HeadingField:
     ----------
     table : ndarray (nx, ny, 16)
         The cost-to-go (m of front-wheel path; ``inf``: no coarse route).
+    worst : float
+        The largest finite value of ``table`` (0 if there is none).
     """
+
+    worst: float = 0.0
 
     def __init__(self, grid, robot, goal, resolution: float):
         from scipy.sparse import coo_matrix
@@ -156,6 +169,8 @@ class HeadingField:
         graph = coo_matrix((np.concatenate(w), (r, c)), shape=(n + 1, n + 1)).tocsr()
         dist = dijkstra(graph, directed=True, indices=n)
         self.table = dist[:n].reshape(nx, ny, NH)
+        finite = dist[:n][np.isfinite(dist[:n])]
+        self.worst = float(finite.max()) if finite.size else 0.0
 
     def estimate(self, x: float, y: float, h: int) -> float:
         """The least cost-to-go of the (up to four) coarse states around ``(x, y)`` at heading ``h``.
@@ -176,10 +191,10 @@ class HeadingField:
         return float(best)
 
     @staticmethod
-    def resolution(grid, L: float) -> float | None:
-        """The coarse cell for ``grid`` (``L / COARSE_CELLS``), or None if that is not a
+    def resolution(grid, L: float, cells: int = COARSE_CELLS) -> float | None:
+        """The coarse cell for ``grid`` (``L / cells``), or None if that is not a
         multiple of the grid's cell or the coarse lattice would exceed :data:`MAX_STATES`."""
-        rc = L / COARSE_CELLS
+        rc = L / cells
         q = rc / grid.cell
         if abs(q - round(q)) > 1e-9 or round(q) < 1:
             return None
@@ -195,20 +210,29 @@ class Guided:
     ctg: HeadingField | None = None
 
     def guided(self, x: float, y: float, hi: int, bound: float) -> float:
-        """``bound`` raised to the coarse cost-to-go at ``(x, y)``, heading ``hi``, once built."""
+        """``bound`` raised to the coarse cost-to-go at ``(x, y)``, heading ``hi``, once built;
+        where that is infinite, ``bound`` plus the field's largest finite value (module docstring)."""
         if self.ctg is not None:
             e = self.ctg.estimate(x, y, hi)
-            if bound < e < math.inf:
+            if e == math.inf:
+                return bound + self.ctg.worst
+            if bound < e:
                 return e
         return bound
 
     def guide(self, h_known: dict) -> None:
-        """Build the coarse cost-to-go (:class:`segplan.costtogo.HeadingField`) and re-rank
-        the open list by it (the states' ``h'`` are computed anew)."""
+        """Build the coarse cost-to-go (:class:`segplan.costtogo.HeadingField`; again at
+        ``L / FINER_CELLS`` if the start has no coarse route) and re-rank the open list by it
+        (the states' ``h'`` are computed anew)."""
         rc = HeadingField.resolution(self.grid, self.L)
         if rc is None:
             return
         self.ctg = HeadingField(self.grid, self.robot, self.goal_l, rc)
+        fine = HeadingField.resolution(self.grid, self.L, FINER_CELLS)
+        if self.ctg.estimate(0.0, 0.0, 0) == math.inf and fine is not None:
+            ctg = HeadingField(self.grid, self.robot, self.goal_l, fine)
+            if ctg.estimate(0.0, 0.0, 0) < math.inf:
+                self.ctg = ctg
         self.weight = min(self.weight, GUIDED_WEIGHT)  # a closer estimate needs less weight
         h_known.clear()
         heap = []

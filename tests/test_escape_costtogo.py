@@ -20,14 +20,16 @@ from hypothesis import strategies as st
 import segplan.lattice as lattice_module
 from segplan import (
     NoPathError,
+    Robot,
     ScenarioError,
     make_scenario,
     measure_scenario_path,
     plan_poses,
     plan_scenario,
+    random_world,
 )
 from segplan.clearance import ClearanceGrid
-from segplan.costtogo import GUIDE_AFTER, HeadingField
+from segplan.costtogo import FINER_CELLS, GUIDE_AFTER, Guided, HeadingField
 from segplan.dubins import dubins_length_scalar
 from segplan.escape import IMPROVE_GAP, RADIUS_FACTORS, STEP, TURNS, improve_with_arcs, tight_arcs
 from segplan.lattice import lattice_search, plan_lattice
@@ -245,17 +247,18 @@ def test_improve_with_arcs_returns_a_plan_near_the_dubins_length_unchanged():
 
 
 # -- 4. the coarse cost-to-go -----------------------------------------------------------------
-def _field(sc):
-    """The HeadingField of a scenario, on a clearance grid built as the lattice search builds it."""
-    L = sc.robot.L
+def _field(sc, cells=2):
+    """The HeadingField (cell ``L / cells``) of a scenario, on a clearance grid built as the
+    lattice search builds it."""
+    L, R_ = sc.robot.L, sc.robot.min_turning_radius
     ws = _workspace(sc)
     cell = L / 16
-    pad = int(math.ceil(max_reach(L, sc.robot.max_steer, L / 2) / cell)) + 2
-    grid = ClearanceGrid(ws.convex, tuple(sc.start), sc.free_bounds, cell, pad, sc.goal, 4 * L + 4 * R)
+    pad = int(math.ceil(max_reach(L, sc.robot.max_steer, L / 8) / cell)) + 2
+    grid = ClearanceGrid(ws.convex, tuple(sc.start), sc.free_bounds, cell, pad, sc.goal, 4 * L + 4 * R_)
     gx, gy = grid.to_lattice(np.array([sc.goal[:2]]))[0]
     goal_l = (gx, gy, math.remainder(sc.goal.theta - sc.start.theta, 2 * math.pi))
-    rc = HeadingField.resolution(grid, L)
-    assert rc == L / 2
+    rc = HeadingField.resolution(grid, L, cells)
+    assert rc == L / cells
     return HeadingField(grid, sc.robot, goal_l, rc), goal_l
 
 
@@ -322,6 +325,56 @@ def test_heading_field_is_infinite_beyond_a_wall_across_the_room(width):
     left = 10.0 - width / 2 - ROBOT.half_width
     assert np.isinf(field.table[X + ROBOT.L < left]).all()
     assert np.isfinite(field.table[X > 10.0 + width / 2 + ROBOT.half_width]).any()
+
+
+def test_a_state_without_a_coarse_route_ranks_after_every_state_with_one():
+    """Where the field is infinite, the guided h' is the bound plus the field's largest finite
+    value: above every finite estimate, so A* (equal g) expands such a state after them."""
+    wall = _rect(9.9, 0.0, 10.1, 12.0)
+    sc = _scenario((2.0, 6.0, 0.0), (16.0, 6.0, 0.0), [wall])
+    field, _ = _field(sc)
+    finite = field.table[np.isfinite(field.table)]
+    assert finite.size and field.worst == finite.max()
+
+    class _Search(Guided):
+        pass
+
+    search = _Search()
+    assert search.guided(0.0, 0.0, 0, 3.0) == 3.0  # no field built: the bound
+    search.ctg = field
+    assert field.estimate(0.0, 0.0, 0) == math.inf  # the start's side of the wall
+    for bound in (0.0, 3.0, 11.5):
+        assert search.guided(0.0, 0.0, 0, bound) == bound + field.worst >= finite.max()
+    gx, gy, _ = (12.0, 0.0, 0.0)  # the goal's side: the estimate, or the bound if that is larger
+    e = field.estimate(gx, gy + 1.0, 0)
+    assert math.isfinite(e)
+    assert search.guided(gx, gy + 1.0, 0, 0.0) == e
+    assert search.guided(gx, gy + 1.0, 0, e + 1.0) == e + 1.0
+
+
+#: A floor of benchmarks/robots.py (robot-002): a robot of 25 degree steering (R = 2.14 L) on a
+#: 10 x 9 m floor whose goal is reached by a loop around an obstacle.
+WIDE = Robot(L=1.0, half_width=0.18318104386766793, max_steer=math.radians(25.0))
+
+
+def _wide_floor():
+    bounds = (0.0, 0.0, 10.142526186146064, 9.358264193396781)
+    return random_world(514841669, 5, bounds, WIDE, radius=(0.4, 2.0), heading_spread=math.pi)
+
+
+def test_a_robot_that_turns_widely_gets_the_finer_coarse_field():
+    """Its coarse primitives (cell L / 2) leave the start without a route; the finer lattice
+    (L / FINER_CELLS) has one, and the search is guided to a valid plan in few expansions."""
+    sc = _wide_floor()
+    coarse, _ = _field(sc)
+    finer, _ = _field(sc, FINER_CELLS)
+    assert coarse.estimate(0.0, 0.0, 0) == math.inf
+    assert math.isfinite(finer.estimate(0.0, 0.0, 0))
+    plan, _ = lattice_search(sc, max_expansions=1000, time_limit=60.0)  # expansions decide
+    assert GUIDE_AFTER < plan.expanded < 1000
+    _assert_valid(plan, sc)
+    # the guide's length estimate from the start is close to the plan's LONGD
+    assert 0.8 * plan.cost < finer.estimate(0.0, 0.0, 0) < 1.2 * plan.cost
 
 
 # -- 5. bad input -----------------------------------------------------------------------------
