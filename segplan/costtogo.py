@@ -22,8 +22,10 @@ have one: its ``h'`` is its two bounds plus the field's largest finite cost-to-g
 lattice is not touched. (Falling back to the bounds alone ranked such states *first*, as the
 bounds lie below the estimates: for robots that turn widely, whose coarse primitives leave
 most coarse states without a route, the search flooded them.) Where the start itself has no
-coarse route, the field is built again on a lattice twice as fine (``L / FINER_CELLS``) and
-kept if the start has a route there.
+coarse route and the finer lattice of ``L / FINER_CELLS`` turns tighter (its tightest turning
+primitive more than :data:`FINER_TURN` times less wide: robots whose steering limit the
+coarse cells round badly, e.g. 25 or 60 deg, not the default 45 deg), the field is built
+again on that lattice and kept if the start has a route there.
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ from .primitives import NH, heading_angles, heading_tables, primitive_set
 __all__ = [
     "COARSE_CELLS",
     "FINER_CELLS",
+    "FINER_TURN",
     "GUIDED_WEIGHT",
     "GUIDE_AFTER",
     "MAX_STATES",
@@ -51,6 +54,8 @@ __all__ = [
 COARSE_CELLS = 2
 #: The finer coarse lattice (``L / FINER_CELLS``) tried where the start has no coarse route.
 FINER_CELLS = 4
+#: ... if its tightest turning primitive is this many times less wide than the coarse one's.
+FINER_TURN = 1.05
 #: Coarse lattices larger than this many states are not built (the search keeps its bounds).
 MAX_STATES = 400_000
 #: Coarse states within this many coarse cells of the goal, at most one heading step from
@@ -115,32 +120,36 @@ class HeadingField:
         self.table = np.full((nx, ny, NH), np.inf)
         if n == 0:
             return
-        blocked = grid.blocked_flat
-        ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
-        base = (((ii + I0) * q - grid.i0) * grid.ny + ((jj + J0) * q - grid.j0)).ravel()  # cells
-        ii, jj = ii.ravel(), jj.ravel()
+        # a primitive's sample at cell offset (di, dj) from its start, over every coarse state:
+        # the grid's blocked cells on a strided slice (every q-th cell from the lattice's corner)
+        blocked = grid.blocked
+        ci, cj = I0 * q - grid.i0, J0 * q - grid.j0
+
+        def hit(cells, out):
+            for di, dj in cells:
+                out |= blocked[ci + di : ci + di + q * nx : q, cj + dj : cj + dj + q * ny : q]
+            return out
+
+        ii, jj = np.arange(nx)[None, :, None], np.arange(ny)[None, None, :]
         rows, cols, w = [], [], []
-
-        def flat(pts):
-            return np.floor(pts[..., 0] / grid.cell).astype(np.int64) * grid.ny + np.floor(
-                pts[..., 1] / grid.cell
-            ).astype(np.int64)
-
         sel = (np.array(_S_IDX[1:])[:, None] * 7 + np.array(_T_IDX)[None, :]).ravel()
         for h in range(NH):
-            # the states of heading h whose segment is not blocked at the start (points s = 0)
-            here = flat(points[h][0, np.array(_T_IDX), :])
-            f = ~blocked[base[:, None] + here].any(axis=1)
-            src, si, sj = base[f], ii[f], jj[f]
-            off = flat(points[h][:, sel, :])  # (m, k)
-            di, dj, h1 = (np.array(v) for v in zip(*step[h], strict=True))
-            ti, tj = si[:, None] + di, sj[:, None] + dj  # (n, m)
-            ok = (ti >= 0) & (ti < nx) & (tj >= 0) & (tj < ny)
-            ok &= ~blocked[src[:, None, None] + off[None]].any(axis=2)
+            at = np.floor(points[h][:, sel, :] / grid.cell).astype(np.int64).tolist()
+            at0 = np.floor(points[h][0, np.array(_T_IDX), :] / grid.cell).astype(np.int64).tolist()
+            stop = hit(at0, np.zeros((nx, ny), dtype=bool))  # the segment at the start
+            bad = np.empty((len(at), nx, ny), dtype=bool)
+            for k, cells in enumerate(at):
+                bad[k] = stop
+                hit(cells, bad[k])
+            di, dj, h1 = (np.array(v)[:, None, None] for v in zip(*step[h], strict=True))
+            # the end state on the coarse lattice, and the primitive free of blocked cells
+            ok = (ii + di >= 0) & (ii + di < nx) & (jj + dj >= 0) & (jj + dj < ny) & ~bad
+            k, si, sj = np.nonzero(ok)
+            start = (si * ny + sj) * NH
             # reversed edges: from the end state to the start state
-            rows.append(((ti * ny + tj) * NH + h1)[ok])
-            cols.append(np.broadcast_to(((si * ny + sj) * NH + h)[:, None], ok.shape)[ok])
-            w.append(np.broadcast_to(np.asarray(cost[h]), ok.shape)[ok])
+            rows.append(start + ((di * ny + dj) * NH + h1).ravel()[k])
+            cols.append(start + h)
+            w.append(np.asarray(cost[h])[k])
         # the seeds: coarse states near the goal, joined to a virtual node n by the Dubins
         # length to the goal (the final union)
         gx, gy, gth = goal
@@ -220,16 +229,23 @@ class Guided:
                 return e
         return bound
 
+    def _tighter(self, coarse: float, fine: float) -> bool:
+        """Does the lattice of cell ``fine`` turn tighter than that of ``coarse`` (:data:`FINER_TURN`)?"""
+        L, steer = self.robot.L, self.robot.max_steer
+        wide = primitive_set(L, steer, coarse).turning_radii().min()
+        return bool(wide > FINER_TURN * primitive_set(L, steer, fine).turning_radii().min())
+
     def guide(self, h_known: dict) -> None:
         """Build the coarse cost-to-go (:class:`segplan.costtogo.HeadingField`; again at
-        ``L / FINER_CELLS`` if the start has no coarse route) and re-rank the open list by it
+        ``L / FINER_CELLS`` if the start has no coarse route and that lattice turns tighter)
+        and re-rank the open list by it
         (the states' ``h'`` are computed anew)."""
         rc = HeadingField.resolution(self.grid, self.L)
         if rc is None:
             return
         self.ctg = HeadingField(self.grid, self.robot, self.goal_l, rc)
         fine = HeadingField.resolution(self.grid, self.L, FINER_CELLS)
-        if self.ctg.estimate(0.0, 0.0, 0) == math.inf and fine is not None:
+        if self.ctg.estimate(0.0, 0.0, 0) == math.inf and fine is not None and self._tighter(rc, fine):
             ctg = HeadingField(self.grid, self.robot, self.goal_l, fine)
             if ctg.estimate(0.0, 0.0, 0) < math.inf:
                 self.ctg = ctg

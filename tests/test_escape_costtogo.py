@@ -327,6 +327,10 @@ def test_heading_field_is_infinite_beyond_a_wall_across_the_room(width):
     assert np.isfinite(field.table[X > 10.0 + width / 2 + ROBOT.half_width]).any()
 
 
+class _Search(Guided):
+    """The guide's methods without a search."""
+
+
 def test_a_state_without_a_coarse_route_ranks_after_every_state_with_one():
     """Where the field is infinite, the guided h' is the bound plus the field's largest finite
     value: above every finite estimate, so A* (equal g) expands such a state after them."""
@@ -335,9 +339,6 @@ def test_a_state_without_a_coarse_route_ranks_after_every_state_with_one():
     field, _ = _field(sc)
     finite = field.table[np.isfinite(field.table)]
     assert finite.size and field.worst == finite.max()
-
-    class _Search(Guided):
-        pass
 
     search = _Search()
     assert search.guided(0.0, 0.0, 0, 3.0) == 3.0  # no field built: the bound
@@ -370,6 +371,11 @@ def test_a_robot_that_turns_widely_gets_the_finer_coarse_field():
     finer, _ = _field(sc, FINER_CELLS)
     assert coarse.estimate(0.0, 0.0, 0) == math.inf
     assert math.isfinite(finer.estimate(0.0, 0.0, 0))
+    search = _Search()
+    search.robot = WIDE
+    assert search._tighter(WIDE.L / 2, WIDE.L / FINER_CELLS)
+    search.robot = ROBOT  # the default robot's two lattices turn alike: no finer field
+    assert not search._tighter(ROBOT.L / 2, ROBOT.L / FINER_CELLS)
     plan, _ = lattice_search(sc, max_expansions=1000, time_limit=60.0)  # expansions decide
     assert GUIDE_AFTER < plan.expanded < 1000
     _assert_valid(plan, sc)
