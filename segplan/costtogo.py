@@ -136,10 +136,10 @@ class HeadingField:
         for h in range(NH):
             at = np.floor(points[h][:, sel, :] / grid.cell).astype(np.int64).tolist()
             at0 = np.floor(points[h][0, np.array(_T_IDX), :] / grid.cell).astype(np.int64).tolist()
-            stop = hit(at0, np.zeros((nx, ny), dtype=bool))  # the segment at the start
+            at_start = hit(at0, np.zeros((nx, ny), dtype=bool))  # the segment at the start
             bad = np.empty((len(at), nx, ny), dtype=bool)
             for k, cells in enumerate(at):
-                bad[k] = stop
+                bad[k] = at_start
                 hit(cells, bad[k])
             di, dj, h1 = (np.array(v)[:, None, None] for v in zip(*step[h], strict=True))
             # the end state on the coarse lattice, and the primitive free of blocked cells
@@ -238,8 +238,7 @@ class Guided:
     def guide(self, h_known: dict) -> None:
         """Build the coarse cost-to-go (:class:`segplan.costtogo.HeadingField`; again at
         ``L / FINER_CELLS`` if the start has no coarse route and that lattice turns tighter)
-        and re-rank the open list by it
-        (the states' ``h'`` are computed anew)."""
+        and re-rank the open list by it (the states' ``h'`` are computed anew)."""
         rc = HeadingField.resolution(self.grid, self.L)
         if rc is None:
             return
