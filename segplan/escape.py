@@ -12,8 +12,8 @@ the steering limit on a circle of radius :data:`RADIUS_FACTORS` ``x R``.
 :data:`TURNS` reached while every union is free) or into it (driving forwards, ending at
 the pose). :func:`escape_pairs` orders the combinations of a start arc and a goal arc
 (either may be empty) by their cost plus the Dubins length between the inner poses;
-:mod:`segplan.lattice` searches again between the inner poses of each in turn when its
-search runs out of states, and puts the arcs around the plan it finds.
+:mod:`segplan.lattice` searches again (at its first resolution) between the inner poses of
+each in turn when its search runs out of states, and puts the arcs around the plan it finds.
 """
 
 from __future__ import annotations

@@ -539,8 +539,10 @@ def lattice_search(
     default planner passes the paper's search's; its counters then add up).
     ``escapes``: tight arcs out of the start and into the goal (:mod:`segplan.escape`):
     when the lattice runs out of states (or the goal looks enclosed), search again between
-    their ends while the limits allow; when its plan costs far more than the Dubins
-    length, try the paper's direct union between their ends.
+    their ends while the limits allow, at the first resolution only (the retry's finer
+    lattice, tried once between the start and the goal, would multiply the time of every
+    pair); when its plan costs far more than the Dubins length, try the paper's direct
+    union between their ends.
     """
     options = lattice_options(
         scenario, resolution=resolution, weight=weight, retry=retry, analytic_every=analytic_every,
@@ -551,9 +553,9 @@ def lattice_search(
         robot = scenario.robot
         workspace = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
 
-    def search(sub, expansions, seconds, start_time=None):
+    def search(sub, expansions, seconds, start_time=None, retry=options["retry"]):
         kw = dict(max_expansions=expansions, time_limit=seconds, t0=start_time, workspace=workspace)
-        return _lattice_search(sub, **kw, **options)
+        return _lattice_search(sub, **kw, **{**options, "retry": retry})
 
     try:
         plan, links = search(scenario, max_expansions, time_limit, t0)
@@ -562,7 +564,8 @@ def lattice_search(
             raise
         limit = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
         deadline = t0 + float(time_limit)
-        plan = escape_search(scenario, workspace, exc, lambda *a: search(*a)[0], limit, deadline, t0)
+        once = lambda *a: search(*a, retry=False)[0]  # noqa: E731 (one resolution per pair)
+        plan = escape_search(scenario, workspace, exc, once, limit, deadline, t0)
         links = LinkModel(workspace)
     if escapes:
         plan = improve_with_arcs(scenario, workspace, plan, t0)

@@ -203,6 +203,23 @@ def test_no_escape_where_the_kinematics_forbid_a_forward_turn(gap):
     assert e.value.reason == "exhausted"
 
 
+def test_escape_searches_run_at_the_first_resolution_only(monkeypatch):
+    """The search between the start and the goal retries at the finer resolution; the
+    searches between the arcs' ends do not (lattice_search's docstring)."""
+    calls = []
+    inner = lattice_module._lattice_search
+
+    def spy(sub, **kw):
+        calls.append(kw["retry"])
+        return inner(sub, **kw)
+
+    monkeypatch.setattr(lattice_module, "_lattice_search", spy)
+    with pytest.raises(NoPathError) as e:
+        lattice_search(_facing_wall(0.35))  # no forward plan: every escape pair is tried
+    assert e.value.reason == "exhausted"
+    assert calls[0] is True and len(calls) > 2 and not any(calls[1:])
+
+
 def test_random_floor_any_114_needs_the_arcs():
     sc = floors.random_floor("any", 114)
     with pytest.raises(NoPathError) as e:
