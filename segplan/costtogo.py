@@ -243,11 +243,12 @@ class Guided:
         if rc is None:
             return
         self.ctg = HeadingField(self.grid, self.robot, self.goal_l, rc)
-        fine = HeadingField.resolution(self.grid, self.L, FINER_CELLS)
-        if self.ctg.estimate(0.0, 0.0, 0) == math.inf and fine is not None and self._tighter(rc, fine):
-            ctg = HeadingField(self.grid, self.robot, self.goal_l, fine)
-            if ctg.estimate(0.0, 0.0, 0) < math.inf:
-                self.ctg = ctg
+        if self.ctg.estimate(0.0, 0.0, 0) == math.inf:  # the start (lattice origin) has no route
+            fine = HeadingField.resolution(self.grid, self.L, FINER_CELLS)
+            if fine is not None and self._tighter(rc, fine):
+                ctg = HeadingField(self.grid, self.robot, self.goal_l, fine)
+                if ctg.estimate(0.0, 0.0, 0) < math.inf:
+                    self.ctg = ctg
         self.weight = min(self.weight, GUIDED_WEIGHT)  # a closer estimate needs less weight
         h_known.clear()
         heap = []

@@ -1,9 +1,9 @@
 """The book's API reference page is generated from ``segplan.__all__`` and refuses an unassigned name."""
 
-import importlib.util
 from pathlib import Path
 
 import pytest
+from load_file import load_file
 
 import segplan
 
@@ -12,10 +12,7 @@ sphinx_errors = pytest.importorskip("sphinx.errors")
 
 
 def load_ext():
-    spec = importlib.util.spec_from_file_location("segplan_api", EXT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_file(EXT, "segplan_api")
 
 
 def test_every_public_name_has_one_section():

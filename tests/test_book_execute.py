@@ -6,14 +6,13 @@ notebook executes in a fresh kernel in its own directory, myst-nb's lookup finds
 outputs, a second build empties the cache first, and a failing notebook is left to myst-nb.
 """
 
-import importlib.util
 import os
-import sys
 import types
 from pathlib import Path
 
 import pytest
 import yaml
+from load_file import load_file
 
 ROOT = Path(__file__).resolve().parents[1]
 EXT = ROOT / "book" / "_ext" / "segplan_execute.py"
@@ -23,11 +22,7 @@ pytest.importorskip("sphinx")
 
 
 def load_ext():
-    spec = importlib.util.spec_from_file_location("segplan_execute", EXT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["segplan_execute"] = module  # its worker function is pickled by module name
-    spec.loader.exec_module(module)
-    return module
+    return load_file(EXT, "segplan_execute")  # registered: its worker function is pickled by name
 
 
 def write_notebook(path: Path, *sources: str) -> Path:

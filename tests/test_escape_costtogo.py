@@ -16,17 +16,16 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from load_file import ROOT, load_file
 
 import segplan.lattice as lattice_module
 from segplan import (
     NoPathError,
-    Robot,
     ScenarioError,
     make_scenario,
     measure_scenario_path,
     plan_poses,
     plan_scenario,
-    random_world,
 )
 from segplan.clearance import ClearanceGrid
 from segplan.costtogo import FINER_CELLS, GUIDE_AFTER, Guided, HeadingField
@@ -363,34 +362,33 @@ def test_a_state_without_a_coarse_route_ranks_after_every_state_with_one():
     assert field.estimate(0.0, 0.0, 0) == math.inf  # the start's side of the wall
     for bound in (0.0, 3.0, 11.5):
         assert search.guided(0.0, 0.0, 0, bound) == bound + field.worst >= finite.max()
-    gx, gy, _ = (12.0, 0.0, 0.0)  # the goal's side: the estimate, or the bound if that is larger
-    e = field.estimate(gx, gy + 1.0, 0)
+    x, y = 12.0, 1.0  # the goal's side of the wall (lattice frame): the estimate, or a larger bound
+    e = field.estimate(x, y, 0)
     assert math.isfinite(e)
-    assert search.guided(gx, gy + 1.0, 0, 0.0) == e
-    assert search.guided(gx, gy + 1.0, 0, e + 1.0) == e + 1.0
-
-
-#: A floor of benchmarks/robots.py (robot-002): a robot of 25 degree steering (R = 2.14 L) on a
-#: 10 x 9 m floor whose goal is reached by a loop around an obstacle.
-WIDE = Robot(L=1.0, half_width=0.18318104386766793, max_steer=math.radians(25.0))
+    assert search.guided(x, y, 0, 0.0) == e
+    assert search.guided(x, y, 0, e + 1.0) == e + 1.0
 
 
 def _wide_floor():
-    bounds = (0.0, 0.0, 10.142526186146064, 9.358264193396781)
-    return random_world(514841669, 5, bounds, WIDE, radius=(0.4, 2.0), heading_spread=math.pi)
+    """robot-002 of benchmarks/robots.py: a robot of 25 degree steering (R = 2.14 L) on a 10 x 9 m
+    floor whose goal is reached by a loop around an obstacle."""
+    sc = load_file(ROOT / "benchmarks" / "robots.py", "robots_probe").robot_floor(2)
+    assert math.isclose(math.degrees(sc.robot.max_steer), 25.0)
+    return sc
 
 
 def test_a_robot_that_turns_widely_gets_the_finer_coarse_field():
     """Its coarse primitives (cell L / 2) leave the start without a route; the finer lattice
     (L / FINER_CELLS) has one, and the search is guided to a valid plan in few expansions."""
     sc = _wide_floor()
+    wide = sc.robot
     coarse, _ = _field(sc)
     finer, _ = _field(sc, FINER_CELLS)
     assert coarse.estimate(0.0, 0.0, 0) == math.inf
     assert math.isfinite(finer.estimate(0.0, 0.0, 0))
     search = _Search()
-    search.robot = WIDE
-    assert search._tighter(WIDE.L / 2, WIDE.L / FINER_CELLS)
+    search.robot = wide
+    assert search._tighter(wide.L / 2, wide.L / FINER_CELLS)
     search.robot = ROBOT  # the default robot's two lattices turn alike: no finer field
     assert not search._tighter(ROBOT.L / 2, ROBOT.L / FINER_CELLS)
     plan, _ = lattice_search(sc, max_expansions=1000, time_limit=60.0)  # expansions decide

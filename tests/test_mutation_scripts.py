@@ -1,21 +1,16 @@
 """The mutation scripts of issue 15 still apply to the code (their patches and targets exist)."""
 
-import importlib.util
 import json
-import sys
 from pathlib import Path
 
 import pytest
+from load_file import load_file
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def load(name):
-    spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module  # dataclasses look their module up
-    spec.loader.exec_module(module)
-    return module
+    return load_file(ROOT / "benchmarks" / f"{name}.py", name)
 
 
 @pytest.mark.parametrize("mutation", load("issue15_mutations").MUTATIONS, ids=lambda m: m.name)

@@ -3,6 +3,8 @@
 import re
 from pathlib import Path
 
+from load_file import load_file
+
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text()
 
@@ -42,14 +44,9 @@ def test_benchmark_block_is_written_by_the_script():
 
 def test_mutation_block_is_written_from_the_stored_run():
     """The kill rates in the README are those of benchmarks/results/mutation.json."""
-    import importlib.util
     import json
-    import sys
 
-    spec = importlib.util.spec_from_file_location("mutation", ROOT / "benchmarks" / "mutation.py")
-    mutation = importlib.util.module_from_spec(spec)
-    sys.modules["mutation"] = mutation
-    spec.loader.exec_module(mutation)
+    mutation = load_file(ROOT / "benchmarks" / "mutation.py", "mutation")
     stored = json.loads(mutation.STORED.read_text())
     block = README.split(mutation.START, 1)[1].split(mutation.END, 1)[0]
     assert block.strip() == mutation.readme_block(stored, mutation.equivalent_mutants()).strip()
@@ -60,7 +57,6 @@ def test_mutation_block_is_written_from_the_stored_run():
 
 def test_commands_block_is_written_from_the_stored_run():
     """The two commands' times in the README are those of benchmarks/results/readme_commands.json."""
-    import importlib.util
     import json
     import os
     import sys
@@ -68,9 +64,7 @@ def test_commands_block_is_written_from_the_stored_run():
     environ = dict(os.environ)  # the script pins BLAS threads for its own timings: not for this session
     sys.path.insert(0, str(ROOT / "benchmarks"))
     try:
-        spec = importlib.util.spec_from_file_location("readme_script", ROOT / "benchmarks" / "readme.py")
-        script = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(script)
+        script = load_file(ROOT / "benchmarks" / "readme.py", "readme_script")
     finally:
         sys.path.remove(str(ROOT / "benchmarks"))
         os.environ.clear()

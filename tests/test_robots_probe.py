@@ -1,13 +1,12 @@
 """benchmarks/robots.py: its floors are deterministic, vary the robot, and its stored run is
 of those floors (beyond the paper; the probe itself is not run in the tests)."""
 
-import importlib.util
 import json
 import math
-import sys
 from pathlib import Path
 
 import pandas as pd
+from load_file import load_file
 
 from segplan.studies import floors as fl
 
@@ -15,11 +14,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _probe():
-    spec = importlib.util.spec_from_file_location("robots_probe", ROOT / "benchmarks" / "robots.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["robots_probe"] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_file(ROOT / "benchmarks" / "robots.py", "robots_probe")
 
 
 def test_floors_are_deterministic_and_vary_the_robot():
