@@ -253,6 +253,8 @@ class Guided:
         h_known.clear()
         heap = []
         for f, n, key in self.heap:
+            if key != GOAL and key not in self.g:
+                continue  # its edge failed and no other joins it yet (segplan.deferred)
             if key != GOAL:
                 i, j, hi = key
                 f = self.g[key] + self.h(i * self.r, j * self.r, hi)

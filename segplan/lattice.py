@@ -40,7 +40,8 @@ shape of Hybrid A* (Dolgov et al. 2008):
   get a finer screen (signed distances of the points to the edge lines of the obstacles
   near them) and, if still unsure, the package's certified test
   (:meth:`segplan.validity.Workspace.colliding`, walls by
-  :meth:`~segplan.validity.Workspace.in_bounds`). Every union of the returned plan is
+  :meth:`~segplan.validity.Workspace.in_bounds`), deferred until their state leaves the
+  open list (:mod:`segplan.deferred`: most never do). Every union of the returned plan is
   checked again by the certified test.
 * **Completeness**: the search expands every reachable lattice state before it says
   ``NoPathError(reason="exhausted")``, and says at which resolution; by default it then
@@ -68,6 +69,7 @@ import numpy as np
 from .approach import ENCLOSED_EXPANSIONS, ENCLOSURE_AFTER, ENCLOSURE_LIMIT, GOAL, GoalApproaches
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions, union_free_near, union_points
 from .costtogo import GUIDE_AFTER, Guided
+from .deferred import DeferredChecks
 from .dubins import dubins_length_scalar
 from .escape import escape_search, improve_with_arcs
 from .frame import heuristic_coefficients
@@ -94,7 +96,7 @@ __all__ = [
 _ANGLES = heading_angles()
 
 
-class _LatticeSearch(GoalApproaches, Guided):
+class _LatticeSearch(GoalApproaches, Guided, DeferredChecks):
     """A* over the lattice laid out in the start's frame (module docstring)."""
 
     def __init__(
@@ -123,6 +125,7 @@ class _LatticeSearch(GoalApproaches, Guided):
         self.fine = fine_points(ps)  # finer points for primitives close to obstacles
         self.points, cells, self.delta, self.step, self.cost = heading_tables(ps, grid.cell)
         self.offsets = [i * grid.ny + j for i, j in cells]  # flat-index offsets in this grid
+        self.into_steps = self.into_tables()
 
     def pose(self, key):
         """World pose of a lattice state."""
@@ -200,6 +203,8 @@ class _LatticeSearch(GoalApproaches, Guided):
         lower = grid.lower_blocked_flat
         stop_at = math.inf  # set when the goal looks enclosed
         h_known: dict = {}
+        unchecked: set = set()  # states whose edge from their parent awaits its check
+        failed: set = set()  # edges (key, m) that failed it
         while heap:
             if expanded >= max_expansions:
                 reason = "expansions"
@@ -212,8 +217,17 @@ class _LatticeSearch(GoalApproaches, Guided):
             _, _, key = heapq.heappop(heap)
             if key == GOAL:
                 return ("found", expanded)
-            if key in closed:
+            if key in closed or key not in self.g:
                 continue
+            if key in unchecked:  # the edge into it is checked now (deferred.py)
+                unchecked.discard(key)
+                if not self.edge_free(*self.parent[key]):
+                    failed.add(self.parent[key])
+                    hk = h_known.get(key)
+                    if hk is None:
+                        hk = h_known[key] = self.h(key[0] * r, key[1] * r, key[2])
+                    counter = self.repair(key, closed, failed, hk, counter)
+                    continue
             closed.add(key)
             expanded += 1
             i, j, h = key
@@ -256,13 +270,10 @@ class _LatticeSearch(GoalApproaches, Guided):
                     hs = h_known[nk] = self.h((i + di) * r, (j + dj) * r, h1)
                 if hs == math.inf:
                     continue  # the goal's region cannot be reached from there
-                if not free[m]:
-                    P = P or self.pose(key)
-                    fp, fd = self.fine[h]
-                    world = (fp[m] + (x, y)) @ grid.rot.T + (self.start.x, self.start.y)
-                    make = lambda key=key, m=m, P=P: self.union(key, m, P)  # noqa: E731
-                    if not self.certified(make, world, fd[m] + 1e-9):
-                        continue
+                if free[m]:
+                    unchecked.discard(nk)
+                else:
+                    unchecked.add(nk)  # checked if and when nk leaves the open list
                 self.g[nk] = ng
                 self.parent[nk] = (key, m)
                 heapq.heappush(heap, (ng + hs, counter, nk))

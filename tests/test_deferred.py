@@ -1,0 +1,112 @@
+"""Deferred edge checks of the lattice search (segplan.deferred): sound, complete, cheapest repair."""
+
+import math
+import zlib
+
+import pytest
+
+from segplan import lattice
+from segplan.lattice import plan_lattice
+from segplan.metrics import measure_scenario_path, plan_poses
+from segplan.studies.floors import random_floor
+
+
+def _spy(monkeypatch):
+    """Record the searches run and the lattice edges of the plans they make."""
+    seen = {"searches": [], "edges": []}
+    run, make_plan = lattice._LatticeSearch.run, lattice._LatticeSearch.make_plan
+
+    def spy_run(self, *a):
+        seen["searches"].append(self)
+        return run(self, *a)
+
+    def spy_make_plan(self, edges, *a):
+        seen["edges"].append(list(edges))
+        return make_plan(self, edges, *a)
+
+    monkeypatch.setattr(lattice._LatticeSearch, "run", spy_run)
+    monkeypatch.setattr(lattice._LatticeSearch, "make_plan", spy_make_plan)
+    return seen
+
+
+@pytest.mark.parametrize("name", ["any-023", "natural-005"])
+def test_edges_that_fail_their_deferred_check_are_never_in_the_plan(monkeypatch, name):
+    # about half of the edges checked late are declared blocked (as if an obstacle the grid
+    # cannot see were there): the search repairs their states and still finds a plan, none
+    # of whose edges is one of them, each state's g its parent's plus the edge's LONGD
+    failed = set()
+    real = lattice._LatticeSearch.edge_free
+
+    def edge_free(self, key, m, P=None):
+        if zlib.crc32(repr((key, m)).encode()) % 2:
+            failed.add((key, m))
+            return False
+        return real(self, key, m, P)
+
+    monkeypatch.setattr(lattice._LatticeSearch, "edge_free", edge_free)
+    seen = _spy(monkeypatch)
+    kind, index = name.rsplit("-", 1)
+    sc = random_floor(kind, int(index))
+    plan = plan_lattice(sc, escapes=False, retry=False)
+    assert failed, "no edge was checked late: the test tests nothing"
+    search, edges = seen["searches"][-1], seen["edges"][-1]
+    assert not set(edges) & failed
+    for key, m in edges:
+        i, j, h = key
+        di, dj, h1 = search.step[h][m]
+        child = (i + di, j + dj, h1)
+        assert search.parent[child] == (key, m)
+        assert search.g[child] == pytest.approx(search.g[key] + search.cost[h][m], rel=1e-12)
+    m = measure_scenario_path(plan_poses(plan), sc)  # the dense shapely oracle
+    assert not m.collides and m.reversals == 0
+
+
+def test_edges_are_checked_only_for_states_taken_from_the_open_list(monkeypatch):
+    # the point of deferring: fewer checks than edges the grid could not clear
+    calls = []
+    real = lattice._LatticeSearch.edge_free
+
+    def edge_free(self, key, m, P=None):
+        calls.append((key, m))
+        return real(self, key, m, P)
+
+    monkeypatch.setattr(lattice._LatticeSearch, "edge_free", edge_free)
+    seen = _spy(monkeypatch)
+    plan_lattice(random_floor("any", 23), escapes=False, retry=False)
+    search = seen["searches"][-1]
+    unsure = 0
+    lower = search.grid.lower_blocked_flat
+    for parent in search.parent.values():
+        if parent is None:
+            continue
+        (i, j, h), m = parent
+        least = lower[search.offsets[h][m] + search.grid.base(i * search.q, j * search.q)].min()
+        unsure += bool(least <= search.delta[h][m])
+    assert 0 < len(calls) < unsure
+
+
+def test_repair_gives_the_cheapest_passing_edge_from_an_expanded_state(monkeypatch):
+    seen = _spy(monkeypatch)
+    sc = random_floor("natural", 0)
+    plan_lattice(sc, escapes=False, retry=False)
+    s = seen["searches"][-1]
+    key = (12, 0, 0)  # ahead of the start, in the open
+    preds = [(key[0] - di, key[1] - dj, h0, m) for h0, m, di, dj in s.into_steps[key[2]]]
+    assert len(preds) >= 3
+    s.heap, s.g, s.parent = [], {}, {}
+    closed = set()
+    for n, (i, j, h0, _) in enumerate(preds):  # every predecessor expanded, distinct costs
+        closed.add((i, j, h0))
+        s.g[(i, j, h0)] = 1.0 + 0.01 * n
+    options = sorted((s.g[(i, j, h0)] + s.cost[h0][m], (i, j, h0), m) for i, j, h0, m in preds)
+    s.g[key], s.parent[key] = -1.0, None
+    failed = {(options[0][1], options[0][2])}  # the cheapest edge failed its check
+    counter = s.repair(key, closed, failed, 5.0, 7)
+    assert counter == 8
+    assert (s.g[key], s.parent[key]) == (options[1][0], (options[1][1], options[1][2]))
+    assert s.heap == [(options[1][0] + 5.0, 7, key)]
+    # no passing edge left: the state is forgotten until a new parent reaches it
+    failed = {(p, m) for _, p, m in options}
+    assert s.repair(key, closed, failed, 5.0, 8) == 8
+    assert key not in s.g and key not in s.parent
+    assert math.isfinite(options[1][0])
