@@ -20,7 +20,6 @@ from .world import Scenario
 
 __all__ = [
     "MAX_CELLS",
-    "NEAR_CELLS",
     "ClearanceGrid",
     "DistanceField",
     "grid_resolutions",
@@ -28,12 +27,6 @@ __all__ = [
     "union_free_near",
     "union_points",
 ]
-
-#: Cells within which :class:`ClearanceGrid` measures each cell centre's distance to an
-#: obstacle exactly (farther, the distance transform's bound holds): at the default cell
-#: ``L / 16``, ``L / 2``, beyond the covering radii of the primitives' points (at most
-#: ``0.18 L`` for 45 deg steering) that the screen compares it with.
-NEAR_CELLS = 8
 
 #: Samples of a union: abscissae (fractions of its frame span) and positions along the segment.
 _U_S = np.linspace(0.0, 1.0, 33)
@@ -76,11 +69,7 @@ class ClearanceGrid:
     ``edt(c) cell - 2 h``, with ``edt`` the distance between the centres of ``c`` and of
     the nearest occupied cell, here bounded from below by the larger of its chessboard
     distance and its taxicab distance over ``sqrt(2)``
-    (:func:`scipy.ndimage.distance_transform_cdt`). Within :data:`NEAR_CELLS` cells of an
-    obstacle (and everywhere for the walls) the bound is sharper where it is larger:
-    ``d(c) - h``, with ``d(c)`` the exact distance of the centre to the obstacles (the
-    nearest edge of each, as a segment) and walls, capped at ``NEAR_CELLS`` cells (farther
-    obstacles are farther still). A cell is
+    (:func:`scipy.ndimage.distance_transform_cdt`). A cell is
     *blocked* when its centre lies deeper than ``h`` inside an obstacle or beyond a wall:
     the whole square is, and the robot's segment cannot touch it.
     """
@@ -121,7 +110,10 @@ class ClearanceGrid:
             blocked |= ~self._inside_walls(cx, cy, bounds, -h - 1e-9)
         for v in polys:
             poly = ConvexPolygon(v, check=False)
-            i0, j0, i1, j1 = self._window(v, 2 * h)
+            a = np.floor((v.min(axis=0) - 2 * h) / g).astype(int) - (self.i0, self.j0)
+            b = np.ceil((v.max(axis=0) + 2 * h) / g).astype(int) - (self.i0, self.j0) + 1
+            i0, j0 = max(int(a[0]), 0), max(int(a[1]), 0)
+            i1, j1 = min(int(b[0]), self.nx), min(int(b[1]), self.ny)
             if i0 >= i1 or j0 >= j1:
                 continue
             px = cx[i0:i1, None, None]
@@ -141,44 +133,12 @@ class ClearanceGrid:
         else:
             edt = np.full(occ.shape, 1e9)
         lower = edt * g - 2.0 * h
-        self._sharpen(lower, occ, polys, cx, cy, bounds, h)
         lower[occ] = -1.0
         self.lower, self.blocked = lower, blocked
         self.lower_flat, self.blocked_flat = lower.ravel(), blocked.ravel()
         #: ``lower`` with ``-inf`` in the blocked cells (every other value is finite): one
         #: gather and one minimum answer both of the lattice's questions about a primitive
         self.lower_blocked_flat = np.where(blocked, -math.inf, lower).ravel()
-
-    def _window(self, v: np.ndarray, grow: float) -> tuple[int, int, int, int]:
-        """Cell index ranges ``i0, j0, i1, j1`` of the box of lattice-frame points ``v`` grown by ``grow``."""
-        a = np.floor((v.min(axis=0) - grow) / self.cell).astype(int) - (self.i0, self.j0)
-        b = np.ceil((v.max(axis=0) + grow) / self.cell).astype(int) - (self.i0, self.j0) + 1
-        return max(int(a[0]), 0), max(int(a[1]), 0), min(int(b[0]), self.nx), min(int(b[1]), self.ny)
-
-    def _sharpen(self, lower, occ, polys, cx, cy, bounds, h: float) -> None:
-        """Raise ``lower`` to ``d(c) - h`` where that is larger and ``d(c)``, the exact
-        distance of a free cell's centre to the obstacles and walls, is below
-        :data:`NEAR_CELLS` cells (class Notes)."""
-        reach = NEAR_CELLS * self.cell
-        cand = ~occ & (lower < reach - h)  # the cells where the exact distance may help
-        near = np.full(lower.shape, reach)
-        for v in polys:
-            i0, j0, i1, j1 = self._window(v, reach)
-            wi, wj = np.nonzero(cand[i0:i1, j0:j1])
-            if len(wi):
-                wi += i0
-                wj += j0
-                near[wi, wj] = np.minimum(near[wi, wj], _outside_distances(v, cx[wi], cy[wj]))
-        ii, jj = np.nonzero(cand)
-        d = near[ii, jj]
-        if self.walls:
-            sx, sy, th = self.frame
-            c, s = math.cos(th), math.sin(th)
-            X, Y = sx + c * cx[ii] - s * cy[jj], sy + s * cx[ii] + c * cy[jj]
-            xmin, ymin, xmax, ymax = bounds
-            for w in (X - xmin, xmax - X, Y - ymin, ymax - Y):
-                np.minimum(d, w, out=d)
-        lower[ii, jj] = np.maximum(lower[ii, jj], d - h - 1e-9)
 
     def _inside_walls(self, cx, cy, bounds, d: float) -> np.ndarray:
         """Cells whose centre lies more than ``d`` inside every wall (lattice-frame centres
@@ -301,15 +261,6 @@ class DistanceField:
         if 0 <= i < self.nx and 0 <= j < self.ny:
             return float(self.table[i, j])
         return 0.0
-
-
-def _outside_distances(v: np.ndarray, px: np.ndarray, py: np.ndarray) -> np.ndarray:
-    """Euclidean distances of points ``(px, py)`` (1-d) outside the convex polygon of
-    vertices ``v`` to it: to the nearest of its edges, as segments."""
-    e = np.roll(v, -1, axis=0) - v
-    qx, qy = px[:, None] - v[:, 0], py[:, None] - v[:, 1]
-    t = np.clip((qx * e[:, 0] + qy * e[:, 1]) / np.einsum("ij,ij->i", e, e), 0.0, 1.0)
-    return np.sqrt(np.min((qx - t * e[:, 0]) ** 2 + (qy - t * e[:, 1]) ** 2, axis=1))
 
 
 def union_points(u) -> tuple[np.ndarray, float]:
