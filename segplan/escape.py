@@ -24,7 +24,8 @@ from dataclasses import dataclass, replace
 
 from .dubins import dubins_length_scalar
 from .path import NoPathError, union_longd, unions_longd
-from .pose import Pose, arc_end
+from .pose import Pose, arc_end, intrinsic_interval
+from .union import Union
 
 __all__ = [
     "IMPROVE_GAP",
@@ -52,7 +53,8 @@ class Arc:
     """A chain of unions along a circle: ``unions`` in driving order, from ``first`` to ``last``.
 
     ``inner`` is the pose the rest of the plan joins: ``last`` for an arc out of the start,
-    ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1].
+    ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1] (the first's
+    times their number: the same to rounding).
     """
 
     unions: tuple
@@ -108,13 +110,22 @@ def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:
         if rho is None:
             continue
         unions, cost, cur = [], 0.0, p
+        u1 = piece = None  # the first union and its LONGD: every later one is congruent
         for k in range(1, per[-1] + 1):
             nxt = _circle_pose(p, rho, side, -k * STEP if into else k * STEP)
-            u = links.union(nxt, cur) if into else links.union(cur, nxt)
+            a, b = (nxt, cur) if into else (cur, nxt)
+            geo = None if u1 is None else intrinsic_interval(a, b)
+            if geo is not None and geo[4] < u1.alpha < geo[5]:  # its frame, moved along
+                d, psi, phi0, phi1, _, _ = geo
+                u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
+            else:
+                u = links.union(a, b)
             if u is None or not ws.union_free(u):
                 break
+            if u1 is None:
+                u1, piece = u, union_longd(u)
             unions.append(u)
-            cost += union_longd(u)
+            cost += piece
             cur = nxt
             if k in per:
                 chain = tuple(reversed(unions)) if into else tuple(unions)
