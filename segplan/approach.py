@@ -5,8 +5,9 @@ in general off the lattice, and a goal in a pocket may admit no direct union fro
 lattice state. :class:`GoalApproaches` grows a small tree backwards from the goal: a
 lattice in the goal's own frame, whose states reach the goal exactly by chains of
 primitives (every edge screened on the clearance grid and, where unsure, checked by the
-certified test). Expanded states near the goal then try unions to the most promising of
-these *approach states* (``g`` + Dubins length + the approach's cost), and a success
+certified test when its state is settled: as the search's, :mod:`segplan.deferred`).
+Expanded states near the goal then try unions to the most promising of these *approach
+states* (``g`` + Dubins length + the approach's cost), and a success
 puts the goal in the open list with the whole chain.
 
 **A goal that looks enclosed** (:meth:`GoalApproaches.enclosed`): when the tree runs out
@@ -129,7 +130,9 @@ class GoalApproaches:
         The goal is the state ``(0, 0, 0)`` of a lattice laid out in its own frame; the
         predecessors of a state are reached by the primitives backwards. The edges into a
         state are screened at once by the primitives' points on the clearance grid; the
-        unsure ones go to :meth:`certified`. Keeps the states within ``budget`` (LONGD to
+        unsure ones go to :meth:`certified` if and when their state is settled (a failing
+        one is replaced by the cheapest passing edge to a settled state,
+        :meth:`_approach_repair`). Keeps the states within ``budget`` (LONGD to
         the goal), at most ``limit`` of them. A later call with a larger ``limit`` resumes
         the same search (:meth:`grow_approaches`).
         """
@@ -156,6 +159,7 @@ class GoalApproaches:
             heap=[(0.0, (0, 0, 0))],
             out=[],
         )
+        self._back.update(unchecked=set(), failed=set())  # deferred edge checks, as the search's
         self.approach_next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
         self.grow_approaches(limit)
 
@@ -168,6 +172,37 @@ class GoalApproaches:
         free, bad = self.grid.screen(b["pts_in"][h] + base[:, None, :], b["dl_in"][h])
         return base, free, bad
 
+    def _approach_edge_free(self, prev, key, h0: int, m: int) -> bool:
+        """The finer screen and, if still unsure, the certified test of primitive ``(h0, m)``
+        from goal-frame state ``prev`` to ``key`` (primitives' finer points, as the search's)."""
+        b = self._back
+        fp, fd = self.fine[h0]
+        base = b["origin"] + np.array(prev[:2], dtype=float) * self.r @ b["rot"].T
+        world = (fp[m] @ b["rot"].T + base) @ self.grid.rot.T + (self.start.x, self.start.y)
+        return self.certified(lambda: self.approach_union(prev, key, h0, m), world, fd[m] + 1e-9)
+
+    def _approach_repair(self, key) -> None:
+        """State ``key`` of the approach tree lost its edge: give it the cheapest edge to a
+        settled state that passes (grid screen, then :meth:`_approach_edge_free`), or forget it."""
+        b = self._back
+        i, j, h0 = key
+        cost, nxt, options = b["cost"], self.approach_next, []
+        for m, p in enumerate(self.prims[h0]):
+            succ = (i + p.di, j + p.dj, p.h1)
+            if succ in b["done"] and (key, h0, m) not in b["failed"]:
+                options.append((cost[succ] + p.cost, succ, m))
+        del cost[key], nxt[key]
+        base = b["origin"] + np.array(key[:2], dtype=float) * self.r @ b["rot"].T
+        for nc, succ, m in sorted(options):
+            p = self.prims[h0][m]
+            free, bad = self.grid.screen((p.points @ b["rot"].T + base)[None], p.delta + 1e-9)
+            if nc <= self.approach_budget_used and not bad[0]:
+                if free[0] or self._approach_edge_free(key, succ, h0, m):
+                    cost[key], nxt[key] = nc, (succ, h0, m)
+                    heapq.heappush(b["heap"], (nc, key))
+                    return
+            b["failed"].add((key, h0, m))
+
     def grow_approaches(self, limit: int):
         """Resume :meth:`build_approaches` until ``limit`` states (or none is left).
 
@@ -176,34 +211,34 @@ class GoalApproaches:
         primitives reaches the goal (with ``budget`` infinite; see :meth:`start_joins`).
         """
         b = self._back
-        into, rot = b["into"], b["rot"]
+        into, grid = b["into"], self.grid
         cost, done, heap, out, nxt = b["cost"], b["done"], b["heap"], b["out"], self.approach_next
-        budget, grid, goal_key = self.approach_budget_used, self.grid, (0, 0, 0)
+        budget, goal_key, unchecked = self.approach_budget_used, (0, 0, 0), b["unchecked"]
         while heap and len(out) < limit:
             c, key = heapq.heappop(heap)
-            if key in done:
-                continue
+            if key in done or c != cost.get(key):
+                continue  # settled, or an entry left behind by a repair
+            if key in unchecked:  # its edge towards the goal is checked now (segplan.deferred)
+                unchecked.discard(key)
+                if not self._approach_edge_free(key, *nxt[key]):
+                    b["failed"].add((key,) + nxt[key][1:])
+                    self._approach_repair(key)
+                    continue
             done.add(key)
             if key != goal_key:
                 out.append(key)
             i, j, h = key
             if not into[h]:
                 continue
-            base, free, bad = self._into(i, j, h)
+            _, free, bad = self._into(i, j, h)
             for k, (h0, m) in enumerate(into[h]):
                 p = self.prims[h0][m]
                 prev = (i - p.di, j - p.dj, h0)
                 nc = c + p.cost
                 if bad[k] or prev in done or nc > budget or not nc < cost.get(prev, math.inf):
                     continue
-                if not free[k]:
-                    # the primitive's finer points (as the forward search uses): a tighter
-                    # screen, so fewer certified tests
-                    fp, fd = self.fine[h0]
-                    u = lambda prev=prev, key=key, h0=h0, m=m: self.approach_union(prev, key, h0, m)  # noqa: E731
-                    world = (fp[m] @ rot.T + base[k]) @ grid.rot.T + (self.start.x, self.start.y)
-                    if not self.certified(u, world, fd[m] + 1e-9):
-                        continue
+                # an edge the grid cannot clear is checked if and when prev is settled
+                (unchecked.discard if free[k] else unchecked.add)(prev)
                 cost[prev], nxt[prev] = nc, (key, h0, m)
                 heapq.heappush(heap, (nc, prev))
         while heap and heap[0][1] in done:

@@ -5,7 +5,7 @@ import zlib
 
 import pytest
 
-from segplan import lattice
+from segplan import NoPathError, lattice
 from segplan.lattice import plan_lattice
 from segplan.metrics import measure_scenario_path, plan_poses
 from segplan.studies.floors import random_floor
@@ -110,3 +110,57 @@ def test_repair_gives_the_cheapest_passing_edge_from_an_expanded_state(monkeypat
     assert s.repair(key, closed, failed, 5.0, 8) == 8
     assert key not in s.g and key not in s.parent
     assert math.isfinite(options[1][0])
+
+
+def _approach_tree(monkeypatch, name, fail_half):
+    """The approach tree of ``name``'s lattice search (grown to its enclosure size), with
+    about half of the edges it checks declared blocked if ``fail_half``; returns the search,
+    the edges declared blocked and every edge checked."""
+    failed, checked = set(), []
+    real = lattice._LatticeSearch._approach_edge_free
+
+    def edge_free(self, prev, key, h0, m):
+        if fail_half and zlib.crc32(repr((prev, h0, m)).encode()) % 2:
+            failed.add((prev, h0, m))
+            return False
+        ok = real(self, prev, key, h0, m)
+        checked.append((prev, ok))
+        return ok
+
+    monkeypatch.setattr(lattice._LatticeSearch, "_approach_edge_free", edge_free)
+    seen = _spy(monkeypatch)
+    kind, index = name.rsplit("-", 1)
+    try:
+        plan_lattice(random_floor(kind, int(index)), escapes=False, retry=False, max_expansions=40)
+    except NoPathError:
+        pass
+    search = seen["searches"][-1]
+    search.grow_approaches(300)
+    return search, failed, checked
+
+
+@pytest.mark.parametrize("name", ["any-023", "any-005"])
+def test_approach_chains_avoid_edges_that_fail_their_deferred_check(monkeypatch, name):
+    s, failed, _ = _approach_tree(monkeypatch, name, fail_half=True)
+    assert failed, "no edge was checked late: the test tests nothing"
+    cost = s._back["cost"]
+    assert len(s.approach_keys) > 20
+    for key in s.approach_keys:  # every settled state: a chain of passing edges to the goal
+        while s.approach_next[key] is not None:
+            nk, h0, m = s.approach_next[key]
+            assert (key, h0, m) not in failed
+            assert cost[key] == pytest.approx(cost[nk] + s.prims[h0][m].cost, rel=1e-12)
+            key = nk
+
+
+def test_approach_edges_are_checked_only_for_settled_states(monkeypatch):
+    s, _, checked = _approach_tree(monkeypatch, "any-023", fail_half=False)
+    done = s._back["done"]
+    # an edge is checked when its state is settled: it is, unless the edge failed
+    assert checked and all(prev in done for prev, ok in checked if ok)
+    # states left in the open list with an edge the grid could not clear: never checked
+    assert s._back["unchecked"] - done
+    for u in [s.approach_chain(k)[0] for k in s.approach_keys[:30]]:  # the dense oracle
+        sc = random_floor("any", 23)
+        m = measure_scenario_path(plan_poses([u]), sc)
+        assert not m.collides
