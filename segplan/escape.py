@@ -252,8 +252,8 @@ def _join(scenario, a, middle, b, expanded: int, t0: float, template=None):
         kinds[len(front) + len(inner)] = "arc"  # the arc's first node
     kinds[-1] = "goal"
     unions = front + tuple(inner) + back
-    cost = unions_longd(unions)
     ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
+    cost = ends + unions_longd(inner)  # the arcs' LONGD is known
     return replace(
         template if direct else middle,
         nodes=(Pose(*scenario.start),) + tuple(u.p1 for u in unions),

@@ -226,6 +226,7 @@ def test_random_floor_any_114_needs_the_arcs():
     assert e.value.reason == "exhausted"
     plan, _ = lattice_search(sc)
     assert "arc" in plan.kinds
+    assert plan.cost == pytest.approx(unions_longd(plan.unions), rel=1e-12)
     _assert_valid(plan, sc)
 
 
@@ -246,6 +247,7 @@ def test_improve_with_arcs_turns_under_the_obstacle_on_any_166():
     improved, _ = lattice_search(sc)
     assert "arc" in improved.kinds
     assert improved.cost < lattice_only.cost
+    assert improved.cost == pytest.approx(unions_longd(improved.unions), rel=1e-12)  # its own LONGD
     m0 = _assert_valid(lattice_only, sc)
     m1 = _assert_valid(improved, sc)
     assert m1.front_length < m0.front_length  # shorter by the independent measure too
