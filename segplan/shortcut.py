@@ -42,11 +42,14 @@ def shortcut_plan(plan: Plan, ex: LinkModel, grid: ClearanceGrid, t0: float) -> 
         best = None
         for j in range(min(len(unions), i + SHORTCUT_WINDOW), i + 1, -1):
             u = ex.union(nodes[i], nodes[j])
-            if u is None or not ex.ws.curvature_ok(u) or not ex.link_cost(u) <= sum(cost[i:j]):
+            if u is None or not ex.ws.curvature_ok(u):
                 continue
+            # the grid's screen before LONGD: it rejects most candidates, at a fraction of the cost
             pts, dl = union_points(u)
             free, bad = grid.screen(grid.to_lattice(pts)[None], dl)
-            if bad[0] or not (free[0] or union_free_near(ex.ws, u, pts, dl)[0]):
+            if bad[0] or not ex.link_cost(u) <= sum(cost[i:j]):
+                continue
+            if not (free[0] or union_free_near(ex.ws, u, pts, dl)[0]):
                 continue
             best = (j, u)
             break
