@@ -235,10 +235,11 @@ class Guided:
         wide = primitive_set(L, steer, coarse).turning_radii().min()
         return bool(wide > FINER_TURN * primitive_set(L, steer, fine).turning_radii().min())
 
-    def guide(self, h_known: dict) -> None:
+    def guide(self, h_known: dict, closed: set) -> None:
         """Build the coarse cost-to-go (:class:`segplan.costtogo.HeadingField`; again at
         ``L / FINER_CELLS`` if the start has no coarse route and that lattice turns tighter)
-        and re-rank the open list by it (the states' ``h'`` are computed anew)."""
+        and re-rank the open list by it (the states' ``h'`` are computed anew, once per state
+        in ``h_known``; the entries of expanded states, in ``closed``, are dropped)."""
         rc = HeadingField.resolution(self.grid, self.L)
         if rc is None:
             return
@@ -253,11 +254,14 @@ class Guided:
         h_known.clear()
         heap = []
         for f, n, key in self.heap:
-            if key != GOAL and key not in self.g:
-                continue  # its edge failed and no other joins it yet (segplan.deferred)
             if key != GOAL:
-                i, j, hi = key
-                f = self.g[key] + self.h(i * self.r, j * self.r, hi)
+                if key in closed or key not in self.g:
+                    continue  # expanded, or its edge failed and no other joins it yet
+                hk = h_known.get(key)
+                if hk is None:
+                    i, j, hi = key
+                    hk = h_known[key] = self.h(i * self.r, j * self.r, hi)
+                f = self.g[key] + hk
             heap.append((f, n, key))
         heapq.heapify(heap)
         self.heap[:] = heap

@@ -241,7 +241,7 @@ class _LatticeSearch(GoalApproaches, Guided, DeferredChecks):
                 P = self.pose(key)
                 self.try_goal(key, P, g)
             if expanded == GUIDE_AFTER and self.goal_parent is None:
-                self.guide(h_known)
+                self.guide(h_known, closed)
             if self.goal_parent is None and stop_at == math.inf and self.enclosed(expanded):
                 stop_at = expanded + ENCLOSED_EXPANSIONS
             if self.approach_keys and hd <= self.goal_radius:
