@@ -241,8 +241,20 @@ class GoalApproaches:
                 (unchecked.discard if free[k] else unchecked.add)(prev)
                 cost[prev], nxt[prev] = nc, (key, h0, m)
                 heapq.heappush(heap, (nc, prev))
-        while heap and heap[0][1] in done:
-            heapq.heappop(heap)
+        while heap:  # exhausted if no state is left that a checked edge joins to the tree
+            c, key = heap[0]
+            if key in done or c != cost.get(key):
+                heapq.heappop(heap)
+            elif key in unchecked:
+                heapq.heappop(heap)
+                unchecked.discard(key)
+                if self._approach_edge_free(key, *nxt[key]):
+                    heapq.heappush(heap, (c, key))
+                    break
+                b["failed"].add((key,) + nxt[key][1:])
+                self._approach_repair(key)
+            else:
+                break
         self.approach_exhausted = not heap
         self.approach_keys = list(out)
         self.approach_cost = np.array([cost[k] for k in out])

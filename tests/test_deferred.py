@@ -8,7 +8,7 @@ import pytest
 from segplan import NoPathError, lattice
 from segplan.lattice import plan_lattice
 from segplan.metrics import measure_scenario_path, plan_poses
-from segplan.studies.floors import random_floor
+from segplan.studies.floors import hard_cases, random_floor
 
 
 def _spy(monkeypatch):
@@ -156,11 +156,38 @@ def test_approach_chains_avoid_edges_that_fail_their_deferred_check(monkeypatch,
 def test_approach_edges_are_checked_only_for_settled_states(monkeypatch):
     s, _, checked = _approach_tree(monkeypatch, "any-023", fail_half=False)
     done = s._back["done"]
-    # an edge is checked when its state is settled: it is, unless the edge failed
-    assert checked and all(prev in done for prev, ok in checked if ok)
+    # an edge is checked when its state is settled: it is, unless the edge failed, or the
+    # state is the next to settle (checked when a growth stops, to tell whether it could go on)
+    waiting = {prev for prev, ok in checked if ok and prev not in done}
+    assert checked and len(waiting) <= 2 and waiting <= {key for _, key in s._back["heap"]}
     # states left in the open list with an edge the grid could not clear: never checked
     assert s._back["unchecked"] - done
     for u in [s.approach_chain(k)[0] for k in s.approach_keys[:30]]:  # the dense oracle
         sc = random_floor("any", 23)
         m = measure_scenario_path(plan_poses([u]), sc)
         assert not m.collides
+
+
+@pytest.mark.parametrize("name", ["enclosed_goal", "enclosed_slit"])
+def test_the_approach_tree_is_exhausted_exactly_when_no_checked_edge_is_left(monkeypatch, name):
+    # grown without a limit, the tree runs out of states; grown again to exactly that many
+    # settled states, the states left in its open list (edges never checked) must be checked
+    # before it says whether it is exhausted: the same answer, the same states
+    made = []
+    init = lattice._LatticeSearch.__init__
+
+    def spy_init(self, *a):
+        init(self, *a)
+        made.append(self)
+
+    monkeypatch.setattr(lattice._LatticeSearch, "__init__", spy_init)
+    with pytest.raises(NoPathError):  # an enclosed goal: the search does not even start
+        plan_lattice(hard_cases()[name], escapes=False, retry=False, max_expansions=40)
+    s = made[-1]
+    s.certified_calls = 0
+    s.build_approaches(math.inf, 100_000)
+    full, exhausted = list(s.approach_keys), s.approach_exhausted
+    s.build_approaches(math.inf, len(full))
+    assert s.approach_exhausted == exhausted
+    assert s.approach_keys == full
+    assert exhausted
