@@ -158,8 +158,9 @@ class GoalApproaches:
             done=set(),
             heap=[(0.0, (0, 0, 0))],
             out=[],
+            unchecked=set(),  # deferred edge checks, as the search's (segplan.deferred)
+            failed=set(),
         )
-        self._back.update(unchecked=set(), failed=set())  # deferred edge checks, as the search's
         self.approach_next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
         self.grow_approaches(limit)
 
@@ -168,18 +169,34 @@ class GoalApproaches:
         ``self._back["into"][h]``): their start points in the lattice frame and the grid's
         screen of their points (certainly free, certainly failing)."""
         b = self._back
-        base = b["origin"] + ((i, j) - b["steps_in"][h][:, :2]) * self.r @ b["rot"].T
+        base = self._goal_lattice_point((i, j) - b["steps_in"][h][:, :2])
         free, bad = self.grid.screen(b["pts_in"][h] + base[:, None, :], b["dl_in"][h])
         return base, free, bad
+
+    def _goal_lattice_point(self, ij) -> np.ndarray:
+        """Lattice-frame position of the goal's-lattice point(s) ``ij`` (``(..., 2)`` integers)."""
+        b = self._back
+        return b["origin"] + np.asarray(ij, dtype=float) * self.r @ b["rot"].T
 
     def _approach_edge_free(self, prev, key, h0: int, m: int) -> bool:
         """The finer screen and, if still unsure, the certified test of primitive ``(h0, m)``
         from goal-frame state ``prev`` to ``key`` (primitives' finer points, as the search's)."""
-        b = self._back
         fp, fd = self.fine[h0]
-        base = b["origin"] + np.array(prev[:2], dtype=float) * self.r @ b["rot"].T
-        world = (fp[m] @ b["rot"].T + base) @ self.grid.rot.T + (self.start.x, self.start.y)
+        base = self._goal_lattice_point(prev[:2])
+        world = (fp[m] @ self._back["rot"].T + base) @ self.grid.rot.T + (self.start.x, self.start.y)
         return self.certified(lambda: self.approach_union(prev, key, h0, m), world, fd[m] + 1e-9)
+
+    def _approach_check(self, key) -> bool:
+        """Check the edge of state ``key`` towards the goal, deferred until now; if it fails,
+        repair the state (:meth:`_approach_repair`) and return False."""
+        b = self._back
+        b["unchecked"].discard(key)
+        nk, h0, m = self.approach_next[key]
+        if self._approach_edge_free(key, nk, h0, m):
+            return True
+        b["failed"].add((key, h0, m))
+        self._approach_repair(key)
+        return False
 
     def _approach_repair(self, key) -> None:
         """State ``key`` of the approach tree lost its edge: give it the cheapest edge to a
@@ -192,7 +209,7 @@ class GoalApproaches:
             if succ in b["done"] and (key, h0, m) not in b["failed"]:
                 options.append((cost[succ] + p.cost, succ, m))
         del cost[key], nxt[key]
-        base = b["origin"] + np.array(key[:2], dtype=float) * self.r @ b["rot"].T
+        base = self._goal_lattice_point(key[:2])
         for nc, succ, m in sorted(options):
             p = self.prims[h0][m]
             free, bad = self.grid.screen((p.points @ b["rot"].T + base)[None], p.delta + 1e-9)
@@ -218,12 +235,8 @@ class GoalApproaches:
             c, key = heapq.heappop(heap)
             if key in done or c != cost.get(key):
                 continue  # settled, or an entry left behind by a repair
-            if key in unchecked:  # its edge towards the goal is checked now (segplan.deferred)
-                unchecked.discard(key)
-                if not self._approach_edge_free(key, *nxt[key]):
-                    b["failed"].add((key,) + nxt[key][1:])
-                    self._approach_repair(key)
-                    continue
+            if key in unchecked and not self._approach_check(key):  # checked now (segplan.deferred)
+                continue
             done.add(key)
             if key != goal_key:
                 out.append(key)
@@ -245,14 +258,8 @@ class GoalApproaches:
             c, key = heap[0]
             if key in done or c != cost.get(key):
                 heapq.heappop(heap)
-            elif key in unchecked:
-                heapq.heappop(heap)
-                unchecked.discard(key)
-                if self._approach_edge_free(key, *nxt[key]):
-                    heapq.heappush(heap, (c, key))
-                    break
-                b["failed"].add((key,) + nxt[key][1:])
-                self._approach_repair(key)
+            elif key in unchecked and not self._approach_check(key):
+                continue  # repaired: its entry, if any, is a new one
             else:
                 break
         self.approach_exhausted = not heap

@@ -214,7 +214,8 @@ class HeadingField:
 
 class Guided:
     """The lattice search's use of :class:`HeadingField` (a mixin of its search class, which
-    holds ``grid``, ``robot``, ``L``, ``r``, ``goal_l``, ``g``, ``heap``, ``weight`` and ``h``)."""
+    holds ``grid``, ``robot``, ``L``, ``r``, ``goal_l``, ``g``, ``heap``, ``weight``, ``h`` and
+    ``h_state``)."""
 
     ctg: HeadingField | None = None
 
@@ -257,11 +258,7 @@ class Guided:
             if key != GOAL:
                 if key in closed or key not in self.g:
                     continue  # expanded, or its edge failed and no other joins it yet
-                hk = h_known.get(key)
-                if hk is None:
-                    i, j, hi = key
-                    hk = h_known[key] = self.h(i * self.r, j * self.r, hi)
-                f = self.g[key] + hk
+                f = self.g[key] + self.h_state(key, h_known)
             heap.append((f, n, key))
         heapq.heapify(heap)
         self.heap[:] = heap

@@ -32,7 +32,7 @@ class DeferredChecks:
 
     Uses the search's ``into_steps`` (:meth:`into_tables`), ``step``, ``cost``, ``offsets``,
     ``delta``, ``fine``, ``grid``, ``q``, ``r``, ``start``, ``g``, ``parent``, ``heap``,
-    ``banned``, :meth:`pose`, :meth:`union` and :meth:`certified`.
+    ``banned``, :meth:`union` and :meth:`certified`.
     """
 
     def into_tables(self) -> list:
@@ -43,14 +43,13 @@ class DeferredChecks:
                 into[h1].append((h0, m, di, dj))
         return into
 
-    def edge_free(self, key, m: int, P=None) -> bool:
+    def edge_free(self, key, m: int) -> bool:
         """The finer screen and, if still unsure, the certified test of primitive ``m`` from
-        state ``key`` (world pose ``P``, computed if None)."""
+        state ``key``."""
         i, j, h = key
-        P = P or self.pose(key)
         fp, fd = self.fine[h]
         world = (fp[m] + (i * self.r, j * self.r)) @ self.grid.rot.T + (self.start.x, self.start.y)
-        return self.certified(lambda: self.union(key, m, P), world, fd[m] + 1e-9)
+        return self.certified(lambda: self.union(key, m), world, fd[m] + 1e-9)
 
     def repair(self, key, closed: set, failed: set, h: float, counter: int) -> int:
         """State ``key``'s edge failed its check: give it the cheapest edge from an expanded

@@ -165,6 +165,14 @@ class _LatticeSearch(GoalApproaches, Guided, DeferredChecks):
         b = max(dubins_length_scalar(x, y, _ANGLES[hi], gx, gy, gth, self.R), self.field.lower(x, y))
         return self.weight * self.guided(x, y, hi, b)
 
+    def h_state(self, key, h_known: dict) -> float:
+        """:meth:`h` of lattice state ``key``, computed once (kept in ``h_known``: ``h'`` of a
+        state is the same from every parent)."""
+        hs = h_known.get(key)
+        if hs is None:
+            hs = h_known[key] = self.h(key[0] * self.r, key[1] * self.r, key[2])
+        return hs
+
     def try_goal(self, key, P, g):
         """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the goal."""
 
@@ -223,10 +231,7 @@ class _LatticeSearch(GoalApproaches, Guided, DeferredChecks):
                 unchecked.discard(key)
                 if not self.edge_free(*self.parent[key]):
                     failed.add(self.parent[key])
-                    hk = h_known.get(key)
-                    if hk is None:
-                        hk = h_known[key] = self.h(key[0] * r, key[1] * r, key[2])
-                    counter = self.repair(key, closed, failed, hk, counter)
+                    counter = self.repair(key, closed, failed, self.h_state(key, h_known), counter)
                     continue
             closed.add(key)
             expanded += 1
@@ -265,9 +270,7 @@ class _LatticeSearch(GoalApproaches, Guided, DeferredChecks):
                     continue
                 if (key, m) in self.banned:
                     continue
-                hs = h_known.get(nk)
-                if hs is None:  # h' of a state is the same from every parent: computed once
-                    hs = h_known[nk] = self.h((i + di) * r, (j + dj) * r, h1)
+                hs = self.h_state(nk, h_known)
                 if hs == math.inf:
                     continue  # the goal's region cannot be reached from there
                 if free[m]:

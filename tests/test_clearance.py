@@ -13,25 +13,21 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from segplan.clearance import ClearanceGrid
+from segplan.floors import random_convex_polygon
 from segplan.geometry import ConvexPolygon
 
 ROOM = (0.0, 0.0, 6.0, 4.0)
 CELL = 0.0625
 
 
-def _polygon(cx, cy, r, k, rot):
-    a = rot + 2.0 * math.pi * np.arange(k) / k
-    return ConvexPolygon(np.column_stack((cx + r * np.cos(a), cy + r * np.sin(a))))
+def _polygon(seed, cx, cy, r):
+    """:func:`segplan.floors.random_convex_polygon` (3-8 vertices, any rotation and aspect)."""
+    return ConvexPolygon(random_convex_polygon(np.random.default_rng(seed), (cx, cy), r, 8))
 
 
 polygons = st.lists(
     st.builds(
-        _polygon,
-        st.floats(0.5, 5.5),
-        st.floats(0.5, 3.5),
-        st.floats(0.15, 1.0),
-        st.integers(3, 8),
-        st.floats(0.0, 2.0 * math.pi),
+        _polygon, st.integers(0, 2**16), st.floats(0.5, 5.5), st.floats(0.5, 3.5), st.floats(0.15, 1.0)
     ),
     min_size=1,
     max_size=4,
