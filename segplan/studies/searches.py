@@ -27,6 +27,7 @@ Nothing here plans: the search is :func:`segplan.api.plan_scenario`.
 
 from __future__ import annotations
 
+import dataclasses
 import heapq
 import math
 from collections.abc import Mapping, Sequence
@@ -40,7 +41,7 @@ from ..romberg import romberg
 from ..union import Union
 from ..world import Scenario
 from .progress import progress
-from .verdicts import Criterion
+from .verdicts import PAPER_CLAIMS, Criterion
 
 __all__ = [
     "CLEAR_IMPROVEMENT",
@@ -314,7 +315,9 @@ def improvement_criterion(where: str) -> Criterion:
     reproduced when it is at most ``-EQUAL_WITHIN`` (better, but by less than 1 %); not
     reproduced when no LONGD search is better than the baseline by more than the 0.1 %
     that counts as equal. A chapter judges each case (each figure, each family of worlds)
-    with it and requires all (:func:`segplan.studies.verdicts.worst`).
+    with it and requires all (:func:`segplan.studies.verdicts.worst`). It is the criterion
+    of ``PAPER_CLAIMS["improves-on-distance"]`` (:mod:`segplan.studies.verdicts`), the
+    case named in its quantity: one criterion for the claim in every chapter.
 
     Parameters
     ----------
@@ -329,13 +332,8 @@ def improvement_criterion(where: str) -> Criterion:
     """
     if not isinstance(where, str) or not where.strip():
         raise ValueError(f"where must be a non-empty string, got {where!r}")
-    return Criterion(
-        f"best relative LONGD change of a LONGD search against the distance baseline, {where}",
-        "<=",
-        CLEAR_IMPROVEMENT,
-        partly=-EQUAL_WITHIN,
-        fmt="{:+.2%}",
-    )
+    (base,) = PAPER_CLAIMS["improves-on-distance"].criteria
+    return dataclasses.replace(base, quantity=f"{base.quantity}, {where}")
 
 
 # -- shortest path of a point among convex polygons ------------------------------------------
