@@ -92,3 +92,40 @@ def test_bad_input():
         versus_baseline(COST, "distance", tol=-0.1)
     with pytest.raises(ValueError, match="where"):
         improvement_criterion("  ")
+
+
+# -- the optimum bracketed from both sides ------------------------------------------------------
+def test_best_known_plans_read_the_stored_ompl_runs_and_bracket_the_optimum(tmp_path):
+    from pathlib import Path
+
+    import segplan
+    from segplan.studies.searches import best_known_plans, optimum_interval, point_lower_bounds
+
+    results = Path(__file__).resolve().parents[1] / "benchmarks" / "results"
+    sc = segplan.load_scenario("single_obstacle")
+    paper = segplan.plan_scenario(sc, planner="paper", heuristic="b")
+    known = best_known_plans(sc, results / "peers_ompl.csv", plans={"as found": paper}, heuristics=("b",))
+    assert list(known.columns) == ["planner", "LONGD [m]", "source"]
+    assert known["LONGD [m]"].is_monotonic_increasing
+    assert (
+        "as found" in set(known["planner"]) and not known["planner"].str.contains("reeds", case=False).any()
+    )
+    stored = pd.read_csv(results / "peers_ompl.csv")
+    mine = stored[(stored["scenario"] == sc.name) & (stored["space"] == "dubins")]
+    mine = mine[mine["solved"].astype(bool) & mine["valid"].astype(bool)]
+    ompl = known[known["planner"].str.startswith("OMPL")]
+    # the raw runs' best per planner, read from the file, not typed
+    for method, best in mine.groupby("method")["front_length"].min().items():
+        assert ompl.set_index("planner").loc[f"OMPL {method} (Dubins)", "LONGD [m]"] <= best + 1e-12
+    interval = optimum_interval(sc, known)
+    assert interval["low"] == pytest.approx(point_lower_bounds(sc)["front"])
+    assert interval["low"] <= interval["high"] <= paper.cost
+    assert interval["high"] == known["LONGD [m]"].min()
+    # without OMPL: segplan's planners only, the same bound or a longer one
+    alone = best_known_plans(sc, heuristics=("b",))
+    assert not alone["planner"].str.startswith("OMPL").any()
+    assert alone["LONGD [m]"].min() >= interval["high"]
+    with pytest.raises(ValueError, match="known"):
+        optimum_interval(sc, known.iloc[0:0])
+    with pytest.raises(ValueError, match="csv_path"):
+        best_known_plans(sc, tmp_path / "none.csv", heuristics=())

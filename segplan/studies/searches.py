@@ -22,6 +22,11 @@ search. This module adds what those comparisons need and the planner does not co
   polygons; likewise for A and the rear length. That shortest path is found exactly on
   the visibility graph of the polygon vertices (Lozano-Perez and Wesley, 1979).
 
+- :func:`best_known_plans` and :func:`optimum_interval`: an upper bound on the optimal
+  cost, the shortest feasible plan of any planner of the book (the paper's search, refined
+  or not, segplan's default planner, OMPL's stored runs), which with the point-path lower
+  bound brackets the optimum from both sides.
+
 Nothing here plans: the search is :func:`segplan.api.plan_scenario`.
 """
 
@@ -31,6 +36,8 @@ import dataclasses
 import heapq
 import math
 from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -43,11 +50,16 @@ from ..world import Scenario
 from .progress import progress
 from .verdicts import PAPER_CLAIMS, Criterion
 
+if TYPE_CHECKING:
+    import pandas as pd
+
 __all__ = [
     "CLEAR_IMPROVEMENT",
     "EQUAL_WITHIN",
     "best_change",
+    "best_known_plans",
     "improvement_criterion",
+    "optimum_interval",
     "plan_rear_length",
     "point_lower_bounds",
     "rear_length",
@@ -519,3 +531,109 @@ def point_lower_bounds(scenario: Scenario) -> dict:
     front, front_path = shortest_point_path(b0, b1, scenario.enlarged, scenario.free_bounds)
     rear, rear_path = shortest_point_path(a0, a1, scenario.enlarged, scenario.free_bounds)
     return {"front": front, "rear": rear, "front_path": front_path, "rear_path": rear_path}
+
+
+# -- the optimum bracketed from both sides ------------------------------------------------------
+def best_known_plans(
+    scenario: Scenario,
+    ompl_csv: str | Path | None = None,
+    plans: Mapping[str, Plan] | None = None,
+    heuristics: Sequence[str] = ("a", "b", "c"),
+) -> pd.DataFrame:
+    """Every planner of the book on ``scenario``, each with its shortest feasible plan (LONGD).
+
+    The shortest of them is an upper bound on the optimal LONGD (the optimum is at most any
+    feasible plan's cost). The candidates:
+
+    - ``plans``: plans the caller has made already (label -> :class:`segplan.Plan`), e.g.
+      a chapter's searches;
+    - the paper's search refined by :func:`segplan.refine` (beyond the paper), one per
+      heuristic of ``heuristics``, and segplan's default planner (the lattice, refined),
+      planned here (deterministic);
+    - OMPL's runs stored by ``benchmarks/peers.py`` at ``ompl_csv`` (read with
+      :func:`segplan.studies.peers.read_ompl_results`, never typed): per planner, the
+      shortest exact Dubins solution that the dense collision oracle found valid, over every
+      budget and seed, raw and, where stored, after OMPL's ``PathSimplifier``. Reeds-Shepp
+      paths reverse, which the robot does not, and are left out. Their length is the
+      front-wheel length measured on the stored path (:func:`segplan.metrics.measure_path`),
+      the same quantity as a plan's LONGD.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    ompl_csv : str or Path, optional
+        The stored OMPL results (``benchmarks/results/peers_ompl.csv``); ``None``: segplan only.
+    plans : mapping of str to Plan, optional
+    heuristics : sequence of {"a", "b", "c"}
+
+    Returns
+    -------
+    DataFrame
+        Columns ``planner``, ``LONGD [m]``, ``source``, shortest first; planners that found
+        no plan are left out.
+
+    Raises
+    ------
+    ValueError
+        A bad ``scenario`` or ``plans``, or no stored results at ``ompl_csv``.
+    """
+    import pandas as pd
+
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    rows = []
+    for label, plan in (plans or {}).items():
+        if not isinstance(plan, Plan):
+            raise ValueError(f"plans[{label!r}] must be a segplan.Plan, got {type(plan).__name__}")
+        rows.append({"planner": str(label), "LONGD [m]": float(plan.cost), "source": "this chapter"})
+    made = {
+        f"paper's search, h'={h}, refined": dict(planner="paper", heuristic=h, refine=True)
+        for h in heuristics
+    }
+    made["segplan's default planner"] = {}
+    for label, options in made.items():
+        try:
+            cost = float(plan_scenario(scenario, **options).cost)
+        except NoPathError:
+            continue
+        rows.append({"planner": label, "LONGD [m]": cost, "source": "planned here"})
+    if ompl_csv is not None:
+        from .peers import SIMPLIFIED, read_ompl_results, simplified_rows
+
+        table, _, meta = read_ompl_results(ompl_csv)
+        runs = table[(table["scenario"] == scenario.name) & (table["space"] == "dubins")]
+        runs = runs[~runs["method"].str.endswith(SIMPLIFIED)]
+        both = pd.concat([runs, simplified_rows(runs)], ignore_index=True)
+        ok = both[both["solved"].astype(bool) & both["valid"].astype(bool)]
+        when = str(meta.get("date", "date not stored"))
+        for method, g in ok.groupby("method", sort=True):
+            best = g.loc[g["front_length"].idxmin()]
+            rows.append(
+                {
+                    "planner": f"OMPL {method} (Dubins)",
+                    "LONGD [m]": float(best["front_length"]),
+                    "source": f"stored run, {best['budget']:g} s budget, seed {int(best['seed'])}, "
+                    f"best of {len(g)} valid ({Path(ompl_csv).name}, {when})",
+                }
+            )
+    out = pd.DataFrame(rows, columns=["planner", "LONGD [m]", "source"])
+    return out.sort_values("LONGD [m]", kind="stable").reset_index(drop=True)
+
+
+def optimum_interval(scenario: Scenario, known: pd.DataFrame) -> dict:
+    """The optimal LONGD of ``scenario`` bracketed from both sides.
+
+    ``low``: the point-path lower bound (:func:`point_lower_bounds`, front); ``high``: the
+    shortest plan of ``known`` (:func:`best_known_plans`), by ``by``. The optimum lies in
+    ``[low, high]``, so a plan of cost ``c`` is within ``[c / high, c / low]`` of it.
+
+    Raises
+    ------
+    ValueError
+        If ``known`` is empty (no feasible plan is known) or lacks its columns.
+    """
+    if not {"planner", "LONGD [m]"} <= set(getattr(known, "columns", ())) or len(known) == 0:
+        raise ValueError("known must be a non-empty table of best_known_plans")
+    best = known.loc[known["LONGD [m]"].idxmin()]
+    low = float(point_lower_bounds(scenario)["front"])
+    return {"low": low, "high": float(best["LONGD [m]"]), "by": str(best["planner"])}
