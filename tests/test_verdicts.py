@@ -248,3 +248,16 @@ def test_judge_claim_takes_one_value_per_criterion():
         judge_claim("no such claim", 1.0)
     with pytest.raises(ValueError, match="criteria"):
         PaperClaim("w", "s", (Target("t", "<", 1),), "why")
+
+
+def test_a_claim_applied_to_one_case_keeps_its_thresholds():
+    claim = PAPER_CLAIMS["search-quicker"]
+    at = claim.at("forward worlds")
+    assert [c.quantity for c in at] == [f"{c.quantity}, forward worlds" for c in claim.criteria]
+    assert [(c.op, c.threshold, c.partly, c.varies) for c in at] == [
+        (c.op, c.threshold, c.partly, c.varies) for c in claim.criteria
+    ]
+    v = judge_claim("search-quicker", 0.5, 0.8, where="forward worlds")
+    assert v.criterion.count("forward worlds") == 2
+    with pytest.raises(ValueError, match="where"):
+        claim.at(" ")

@@ -32,7 +32,6 @@ Nothing here plans: the search is :func:`segplan.api.plan_scenario`.
 
 from __future__ import annotations
 
-import dataclasses
 import heapq
 import math
 from collections.abc import Mapping, Sequence
@@ -344,8 +343,8 @@ def improvement_criterion(where: str) -> Criterion:
     """
     if not isinstance(where, str) or not where.strip():
         raise ValueError(f"where must be a non-empty string, got {where!r}")
-    (base,) = PAPER_CLAIMS["improves-on-distance"].criteria
-    return dataclasses.replace(base, quantity=f"{base.quantity}, {where}")
+    (criterion,) = PAPER_CLAIMS["improves-on-distance"].at(where)
+    return criterion
 
 
 # -- shortest path of a point among convex polygons ------------------------------------------

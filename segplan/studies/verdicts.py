@@ -23,6 +23,7 @@ Two kinds of statement are judged, and never mixed:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import operator
 from collections.abc import Iterable, Mapping
@@ -433,6 +434,20 @@ class PaperClaim:
         ):
             raise ValueError("criteria must be a non-empty tuple of (claim) Criterion objects")
 
+    def at(self, where: str) -> tuple[Criterion, ...]:
+        """The claim's criteria applied to one case, named in their quantity ("..., Fig. 5").
+
+        The thresholds, bands and formats stay the registry's: only the text says where.
+
+        Raises
+        ------
+        ValueError
+            If ``where`` is not a non-empty string.
+        """
+        if not isinstance(where, str) or not where.strip():
+            raise ValueError(f"where must be a non-empty string, got {where!r}")
+        return tuple(dataclasses.replace(c, quantity=f"{c.quantity}, {where}") for c in self.criteria)
+
 
 #: The paper's claims judged by more than one chapter, or judged on more than one
 #: quantity, each with its one criterion (or criteria), keyed by a short name. A chapter
@@ -567,20 +582,23 @@ PAPER_CLAIMS: Mapping[str, PaperClaim] = MappingProxyType(
 )
 
 
-def judge_claim(key: str, *values) -> Verdict:
+def judge_claim(key: str, *values, where: str | None = None) -> Verdict:
     """The verdict of the paper's claim ``key`` of :data:`PAPER_CLAIMS`, one value per criterion.
 
     With one criterion this is :func:`judge`; with several, the worst of their verdicts
-    (:func:`worst`).
+    (:func:`worst`). ``where``, if given, names the case in the criteria's text
+    (:meth:`PaperClaim.at`).
 
     Raises
     ------
     ValueError
-        If ``key`` is unknown, or the number of values is not the number of criteria.
+        If ``key`` is unknown, the number of values is not the number of criteria, or
+        ``where`` is an empty string.
     """
     if key not in PAPER_CLAIMS:
         raise ValueError(f"key must be one of {sorted(PAPER_CLAIMS)}, got {key!r}")
-    criteria = PAPER_CLAIMS[key].criteria
+    claim = PAPER_CLAIMS[key]
+    criteria = claim.criteria if where is None else claim.at(where)
     if len(values) != len(criteria):
         raise ValueError(
             f"claim {key!r} takes {len(criteria)} value(s), one per criterion, got {len(values)}"
