@@ -478,7 +478,7 @@ PAPER_CLAIMS: Mapping[str, PaperClaim] = MappingProxyType(
             where="Results (Figs. 5 and 6); Conclusions: 'nearby optimal solution'",
             criteria=(
                 Criterion(
-                    "LONGD of the paper's search over the optimal LONGD, the worse figure",
+                    "LONGD of the paper's search over the optimal LONGD",
                     "<=",
                     1.10,
                     fmt="{:.3f}",
