@@ -7,14 +7,19 @@ segplan's deterministic side at build time.
 
 Usage::
 
-    nice -n -10 python benchmarks/peers.py --jobs 2   # the full study -> benchmarks/results/peers_ompl.*
+    nice -n -10 python benchmarks/peers.py             # the full study -> benchmarks/results/peers_ompl.*
     python benchmarks/peers.py --quick --out /tmp/peers.csv  # smoke run: tiny budget, one seed, one floor
+    python benchmarks/peers.py --scheduler tcp://host:8786   # the OMPL runs on a Dask cluster
 
-Writes ``OUT`` (default ``benchmarks/results/peers_ompl.csv``, one row per OMPL run),
-``OUT.json`` (date, machine, OMPL version, commit, command line, configuration, wall
-time) and ``OUT_paths.json.gz`` (the poses of the best valid run per floor, space,
-planner and budget), and prints the summary tables against segplan. Progress shows on a
-terminal.
+The OMPL runs go through :func:`segplan.studies.executor.run_jobs`: one per free core
+(``--jobs`` caps it), each run's CPU share recorded and a starved run refused and run again
+(:data:`segplan.studies.executor.FAIRNESS`). Accepted runs are appended to
+``OUT.journal.jsonl`` as they finish: run the same command again after an interruption and
+it resumes. Writes ``OUT`` (default ``benchmarks/results/peers_ompl.csv``, one row per OMPL
+run, raw and simplified measures), ``OUT.json`` (date, machine, OMPL version, commit,
+command line, configuration, fairness rule, wall time) and ``OUT_paths.json.gz`` (the poses
+of the best valid run per floor, space, planner and budget, raw and simplified), removes
+the journal, and prints the summary tables against segplan. Progress shows on a terminal.
 """
 
 from __future__ import annotations
@@ -53,7 +58,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         metavar="BUDGET",
         help="budgets of the Reeds-Shepp reference (BIT*); none to skip",
     )
-    ap.add_argument("--jobs", type=int, default=1, help="OMPL processes at a time (default 1)")
+    ap.add_argument(
+        "--jobs", type=int, help="at most this many OMPL runs at a time (default: one per free core)"
+    )
+    ap.add_argument(
+        "--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786): run OMPL on that cluster"
+    )
     args = ap.parse_args(argv)
     if not ompl_runner.ompl_available():
         print("peers.py needs the OMPL Python bindings: pip install 'segplan[peers]'", file=sys.stderr)
@@ -69,11 +79,14 @@ def main(argv: Sequence[str] | None = None) -> int:
             )
         config = peers.StudyConfig(scenarios=names, blocks=tuple(blocks))
     meta = ompl_runner.provenance(["benchmarks/peers.py", *argv], config, args.jobs)
+    meta["scheduler"] = args.scheduler
+    journal = peers.journal_path(args.out)
     t0 = time.perf_counter()
-    ompl, paths = peers.run_ompl(config, jobs=args.jobs)
+    ompl, paths = peers.run_ompl(config, jobs=args.jobs, journal=journal, scheduler=args.scheduler)
     meta["wall_seconds"] = round(time.perf_counter() - t0, 1)
     meta["load_average_after"] = list(os.getloadavg()) if hasattr(os, "getloadavg") else None
     written = peers.write_ompl_results(ompl, paths, args.out, meta)
+    journal.unlink(missing_ok=True)
     ours = peers.run_segplan(config)
     t = pd.concat([ours, ompl], ignore_index=True)
     with pd.option_context("display.width", 200, "display.max_columns", 30, "display.precision", 3):
@@ -83,7 +96,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print()
         for b in sorted(set(t.loc[t["space"] == "dubins", "budget"])):
             for refine in (False, True):
-                print(f"goal at {b:g} s, {peers.segplan_method('a', refine)}:")
+                side = "simplified" if refine else "raw"
+                print(f"goal at {b:g} s, {peers.segplan_method('a', refine)} (OMPL {side}):")
                 print(peers.goal_table(t, b, refine=refine).to_string(index=False))
     bad = t[(t["solved"] == True) & (t["valid"] == False)]  # noqa: E712
     print(f"\ninvalid paths (solved but failing the dense oracle): {len(bad)}")

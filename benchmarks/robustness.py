@@ -9,7 +9,9 @@ limits unless ``--max-expansions`` is given; ``--max-expansions 0`` leaves the p
 
 Usage::
 
-    python benchmarks/robustness.py --ompl --jobs 2        # the stored OMPL side (about an hour)
+    python benchmarks/robustness.py --ompl --no-segplan    # the stored OMPL side (about an hour
+                                                           # on 2 idle cores; resumes if interrupted)
+    python benchmarks/robustness.py --ompl --scheduler tcp://host:8786  # on a Dask cluster
     python benchmarks/robustness.py --out segplan.csv      # segplan on every floor (400 random,
                                                            # hard, 6 large, the sweep), targets
     python benchmarks/robustness.py --planner paper        # the same with the paper's search
@@ -35,7 +37,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     """``python benchmarks/robustness.py [--ompl] [--quick] [--out CSV] [...]``."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--ompl", action="store_true", help="run the OMPL side (the runs not stored yet)")
-    ap.add_argument("--jobs", type=int, default=2, help="OMPL processes at a time (default 2)")
+    ap.add_argument(
+        "--jobs", type=int, help="at most this many OMPL runs at a time (default: one per free core)"
+    )
+    ap.add_argument(
+        "--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786): run OMPL on that cluster"
+    )
     ap.add_argument("--ompl-csv", type=Path, default=rb.OMPL_CSV, help="the stored OMPL runs")
     ap.add_argument(
         "--quick",
@@ -71,25 +78,22 @@ def main(argv: Sequence[str] | None = None) -> int:
 
         return tick
 
+    run = {"workers": args.jobs, "scheduler": args.scheduler, "argv": argv_list}
     if args.ompl or args.quick:
         if not ompl_runner.ompl_available():
             say("OMPL is not installed (pip install 'segplan[peers]'): skipping the OMPL side")
         elif args.quick:
             tmp = Path(tempfile.mkdtemp())
             jobs = rb.ompl_jobs({"any": groups["any"][:1], "hard": groups["hard"][:1]}, budgets=(0.1,))
-            t = rb.run_ompl(
-                jobs, tmp / "o.csv", tmp / "p.json.gz", tmp / "o.json", workers=args.jobs, argv=argv_list
-            )
+            files = (tmp / "o.csv", tmp / "p.json.gz", tmp / "o.json")
+            t = rb.run_ompl(jobs, *files, **run)
             say(f"OMPL quick: {int(t['solved'].sum())} of {len(t)} solved")
         else:
-            with progress(desc="OMPL", unit="run") as bar:  # the runs not stored yet: no total
-                rb.run_ompl(
-                    rb.ompl_jobs(groups),
-                    args.ompl_csv,
-                    workers=args.jobs,
-                    progress=ticking(bar),
-                    argv=argv_list,
-                )
+            csv = args.ompl_csv
+            files = (csv, csv.with_name(csv.stem + "_paths.json.gz"), csv.with_suffix(".json"))
+            rb.run_ompl(
+                rb.ompl_jobs(groups), *files, workers=args.jobs, scheduler=args.scheduler, argv=argv_list
+            )
     if args.no_segplan:
         return 0
     limit = args.max_expansions

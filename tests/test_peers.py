@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from segplan.studies import ompl_runner, peers
+from segplan.studies import executor, ompl_runner, peers
 
 ROOT = Path(__file__).resolve().parents[1]
 STORED = ROOT / "benchmarks" / "results" / "peers_ompl.csv"
@@ -126,6 +126,47 @@ def test_stored_results_cover_every_floor_planner_budget_and_seed():
     assert set(best) == set(paths)
     for P in paths.values():
         assert P.ndim == 2 and P.shape[1] == 3 and len(P) >= 2
+
+
+def test_stored_results_are_fair_runs_with_simplified_paths():
+    """Every stored run of 0.5 s or more got at least 0.9 of a core (the executor's rule, recorded
+    in the provenance), and every exact solution has its simplified path measured beside it."""
+    table, paths, meta = peers.read_ompl_results(STORED)
+    if "fairness" not in meta:
+        pytest.skip("the stored runs predate the fairness rule (harness 2): re-run benchmarks/peers.py")
+    rule = executor.FairnessRule(**{k: v for k, v in meta["fairness"].items() if k != "rule"})
+    assert rule == executor.FAIRNESS and meta["harness_version"] == ompl_runner.HARNESS_VERSION
+    assert not any(rule.refuses(r) for r in table.to_dict("records"))
+    assert np.allclose(table["cpu_share"], table["cpu_seconds"] / table["seconds"], rtol=1e-12)
+    solved = table[table["solved"]]
+    assert solved["simplified_front_length"].notna().all() and solved["simplify_seconds"].notna().all()
+    simple = {k for k in paths if k[1].endswith(peers.SIMPLIFIED)}
+    runs = set(
+        zip(table["scenario"], table["method"], table["space"], table["budget"], table["seed"], strict=True)
+    )
+    assert simple and {(k[0], k[1].removesuffix(peers.SIMPLIFIED), *k[2:]) for k in simple} <= runs
+
+
+def test_goal_table_compares_like_with_like():
+    """Refined segplan against OMPL's simplified paths, segplan as found against the raw ones."""
+    rows = [
+        {"scenario": "s", "method": "segplan h'=a", "space": "segplan", "budget": math.nan, "seed": 0,
+         "solved": True, "valid": True, "front_length": 10.5, "seconds": 0.05},
+        {"scenario": "s", "method": "segplan h'=a +refine", "space": "segplan", "budget": math.nan,
+         "seed": 0, "solved": True, "valid": True, "front_length": 10.0, "seconds": 0.05},
+        {"scenario": "s", "method": "BITstar", "space": "dubins", "budget": 5.0, "seed": 1,
+         "solved": True, "valid": True, "front_length": 11.0, "seconds": 5.0, "simplify_seconds": 0.01,
+         **{f: math.nan for f in ompl_runner.SIMPLIFIED_FIELDS},
+         "simplified_front_length": 9.5, "simplified_valid": True},
+    ]  # fmt: skip
+    t = pd.DataFrame(rows)
+    raw = peers.goal_table(t, 5.0, refine=False).iloc[0]
+    assert raw["ompl_best_front"] == 11.0 and raw["ompl_planner"] == "BITstar" and raw["shorter"]
+    simple = peers.goal_table(t, 5.0).iloc[0]
+    assert simple["ompl_best_front"] == 9.5 and simple["ompl_planner"] == "BITstar +simplify"
+    assert not simple["shorter"]
+    s = peers.simplified_rows(t).iloc[0]
+    assert s["seconds"] == pytest.approx(5.01) and s["method"] == "BITstar +simplify"
 
 
 def test_stored_results_round_trip(tmp_path):

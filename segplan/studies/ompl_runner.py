@@ -31,7 +31,16 @@ The peers' problem, made as equal as OMPL allows
   spaces is the length of the *rear point's* path (the space's distance): OMPL
   optimises a different cost from segplan's (front-wheel length, formula [1]). Its cost
   threshold is left at 0, so every planner uses its whole budget. Planners run with
-  their default parameters; no path simplification.
+  their default parameters.
+- **Simplification, like with like**: segplan's plans are compared as found and refined
+  (:func:`segplan.refine`); OMPL's as returned (*raw*) and after OMPL's own
+  ``PathSimplifier.simplify`` (vertex reduction, shortcuts, B-spline smoothing, under the
+  same objective and motion validator), bounded by :data:`SIMPLIFY_SECONDS` and timed
+  (``simplify_seconds``). The simplified path is measured by the same function and the
+  same dense oracle; its measures are stored beside the raw ones (``simplified_*``).
+- **Fairness**: each run records its CPU time and the machine's 1-minute load average
+  before and after ``solve`` (``load_before``, ``load_after``); the executor
+  (:mod:`segplan.studies.executor`) refuses a run that got less than its share.
 - **Budgets and seeds**: wall-clock budgets (``SimpleSetup.solve(seconds)``) and seeds
   >= 1, the studies' own (:data:`segplan.studies.peers.BUDGETS`, ``SEEDS``). Each run is
   a fresh Python process (:func:`solve_ompl_isolated`), because OMPL seeds its generators
@@ -80,6 +89,7 @@ import numpy as np
 from ..geometry import as_polygon, pose_collides, pose_in_bounds
 from ..metrics import PathMetrics, measure_scenario_path, se2_poses
 from ..world import Scenario, load_scenario, scenario_from_dict
+from .executor import FAIRNESS, FairnessRule
 
 __all__ = [
     "HARNESS_VERSION",
@@ -87,6 +97,8 @@ __all__ = [
     "PLANNERS",
     "PLOT_STEP",
     "RESOLUTION",
+    "SIMPLIFIED_FIELDS",
+    "SIMPLIFY_SECONDS",
     "SPACES",
     "STEP",
     "SegmentValidity",
@@ -109,10 +121,16 @@ RESOLUTION = 0.02
 STEP = 0.01
 #: Spacing (m) of the poses kept for figures.
 PLOT_STEP = 0.05
-#: Bump when the harness changes in a way that invalidates cached results.
-HARNESS_VERSION = 2
+#: Bump when the harness changes in a way that invalidates cached results (3: CPU share
+#: and load per run, OMPL's PathSimplifier beside the raw path).
+HARNESS_VERSION = 3
 #: The columns of :class:`segplan.metrics.PathMetrics` in every run's row.
 METRIC_FIELDS = tuple(f.name for f in fields(PathMetrics))
+#: Longest time (s) OMPL's ``PathSimplifier.simplify`` may take on one path.
+SIMPLIFY_SECONDS = 1.0
+#: The columns of the simplified path, beside the raw ones: ``simplified_`` + the metric
+#: fields, its OMPL cost and validity.
+SIMPLIFIED_FIELDS = tuple(f"simplified_{f}" for f in (*METRIC_FIELDS, "ompl_cost", "valid"))
 _MARK = "@@peers@@"
 
 
@@ -239,6 +257,7 @@ def solve_ompl(
     space: str = "dubins",
     resolution: float = RESOLUTION,
     step: float = STEP,
+    simplify: float = SIMPLIFY_SECONDS,
 ) -> dict:
     """One OMPL run, *in this process*; a row of the study plus the path's poses.
 
@@ -254,7 +273,11 @@ def solve_ompl(
         queries), ``ompl_cost`` (OMPL's objective, the rear path length), the
         :class:`segplan.metrics.PathMetrics` fields (NaN without an exact solution),
         ``valid`` (solved and passes the dense oracle) and ``poses`` (``(n, 3)`` list,
-        one pose every :data:`PLOT_STEP` m, or None).
+        one pose every :data:`PLOT_STEP` m, or None); ``load_before``, ``load_after``
+        (1-minute load average around ``solve``); the same measures of the path after
+        OMPL's ``PathSimplifier.simplify`` (at most ``simplify`` s, 0: not simplified):
+        :data:`SIMPLIFIED_FIELDS`, ``simplify_seconds`` (its wall time) and
+        ``simplified_poses``.
     """
     from ompl import base as ob
     from ompl import geometric as og
@@ -268,6 +291,8 @@ def solve_ompl(
         raise ValueError(f"space must be one of {SPACES}, got {space!r}")
     if not (isinstance(budget, int | float) and math.isfinite(budget) and budget > 0):
         raise ValueError(f"budget must be a positive number of seconds, got {budget!r}")
+    if not (isinstance(simplify, int | float) and math.isfinite(simplify) and simplify >= 0):
+        raise ValueError(f"simplify must be a number of seconds >= 0, got {simplify!r}")
     if sc.free_bounds is None:
         raise ValueError("scenario must have bounds: OMPL samples (x, y) inside them")
     ou.RNG.setSeed(seed)  # before any generator exists (fresh process)
@@ -292,12 +317,15 @@ def solve_ompl(
         st.setXY(p.x, p.y)
         st.setYaw(ompl_heading(p.theta))
     ss.setStartAndGoalStates(start, goal)
-    ss.setOptimizationObjective(ob.PathLengthOptimizationObjective(si))
+    objective = ob.PathLengthOptimizationObjective(si)
+    ss.setOptimizationObjective(objective)
     ss.setPlanner(getattr(og, planner)(si))
     ss.setup()
+    load_before = _load()
     t0, c0 = time.perf_counter(), time.process_time()
     status = ss.solve(float(budget))
     seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+    load_after = _load()
     solved = bool(ss.haveExactSolutionPath())
     row = {
         "scenario": sc.name,
@@ -310,21 +338,47 @@ def solve_ompl(
         "seconds": seconds,
         "cpu_seconds": cpu,
         "checks": validity.calls,
-        "ompl_cost": math.nan,
+        "load_before": load_before,
+        "load_after": load_after,
     }
-    poses = None
-    metrics = dict.fromkeys(METRIC_FIELDS, math.nan)
+    raw = simplified = None
+    simplify_seconds = math.nan
     if solved:
         path = ss.getSolutionPath()
-        row["ompl_cost"] = float(path.length())
-        path.interpolate(max(2, math.ceil(path.length() / (0.5 * step)) + 1))
-        P = se2_poses(path.getStates())
-        metrics = measure_scenario_path(P, sc).as_dict()
-        poses = thin_poses(P, path.length(), PLOT_STEP).tolist()
-    row.update(metrics)
-    row["valid"] = bool(solved and not metrics["collides"])
-    row["poses"] = poses
+        shorter = og.PathGeometric(path)  # a copy: the raw path is measured too
+        if simplify > 0:
+            simplifier = og.PathSimplifier(si, ss.getProblemDefinition().getGoal(), objective)
+            t0 = time.perf_counter()
+            simplifier.simplify(shorter, float(simplify))
+            simplify_seconds = time.perf_counter() - t0
+            simplified = shorter
+        raw = path
+    row.update(_measured(raw, sc, step))
+    row["simplify_seconds"] = simplify_seconds
+    row.update({f"simplified_{k}": v for k, v in _measured(simplified, sc, step).items()})
     return row
+
+
+def _measured(path, sc: Scenario, step: float) -> dict:
+    """``ompl_cost``, the metric fields, ``valid`` and ``poses`` of an OMPL path (None: NaN, no poses).
+
+    The path is interpolated every ``step / 2`` m, measured by
+    :func:`segplan.metrics.measure_scenario_path` and checked by its dense oracle.
+    """
+    if path is None:
+        out = {"ompl_cost": math.nan, **dict.fromkeys(METRIC_FIELDS, math.nan)}
+        return {**out, "valid": False, "poses": None}
+    length = float(path.length())
+    path.interpolate(max(2, math.ceil(length / (0.5 * step)) + 1))
+    P = se2_poses(path.getStates())
+    metrics = measure_scenario_path(P, sc).as_dict()
+    out = {"ompl_cost": length, **metrics, "valid": not metrics["collides"]}
+    return {**out, "poses": thin_poses(P, length, PLOT_STEP).tolist()}
+
+
+def _load() -> float:
+    """The machine's 1-minute load average (NaN where the system has none)."""
+    return os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
 
 
 def thin_poses(P: np.ndarray, length: float, step: float) -> np.ndarray:
@@ -410,12 +464,14 @@ def _cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
-def provenance(argv: Sequence[str], config, jobs: int) -> dict:
+def provenance(argv: Sequence[str], config, jobs: int | None, rule: FairnessRule = FAIRNESS) -> dict:
     """How, when and where a study is measured: date (UTC), machine (CPU, cores, load),
     Python, numpy and OMPL versions, the commit (and whether the tree had changes), the
     command line, the configuration (a dataclass such as
     :class:`segplan.studies.peers.StudyConfig`, or ``None`` for a study that records its own,
-    such as :mod:`segplan.studies.robustness`) and the harness version."""
+    such as :mod:`segplan.studies.robustness`), the harness version, the fairness ``rule``
+    every stored run passed (:class:`segplan.studies.executor.FairnessRule`) and how OMPL's
+    paths were simplified."""
     from .. import __version__
 
     status = _git("status", "--porcelain", "--untracked-files=no")
@@ -438,6 +494,12 @@ def provenance(argv: Sequence[str], config, jobs: int) -> dict:
         "command": " ".join(["python", *argv]),
         "jobs": jobs,
         "harness_version": HARNESS_VERSION,
+        "fairness": rule.provenance(),
+        "simplifier": {
+            "what": "ompl.geometric.PathSimplifier(si, goal, objective).simplify(path, max_time) on a copy "
+            "of each exact solution; raw and simplified both measured (simplified_* columns)",
+            "max_time_s": SIMPLIFY_SECONDS,
+        },
         "config": None if config is None else asdict(config),
     }
 

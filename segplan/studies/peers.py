@@ -21,8 +21,17 @@ edges met. This module is the study the book's chapter 8 draws:
   interpreter's caches warmed), measured and reported apart, like OMPL's library load.
 
 Goal: on each scenario segplan's front-wheel length at most that of the best
-OMPL result at 5 s, found in under 1/50 of that time (0.1 s). :func:`goal_table` judges
-the refined planner by default (``refine=False``: the paper's search alone).
+OMPL result at 5 s, found in under 1/50 of that time (0.1 s). Like is compared with like:
+:func:`goal_table` judges segplan refined against OMPL's paths after OMPL's own
+``PathSimplifier`` (:func:`simplified_rows`, methods ``"BITstar +simplify"``), and, with
+``refine=False``, the paper's search alone against OMPL's raw paths.
+
+Fair runs
+---------
+Every OMPL run goes through :func:`segplan.studies.executor.run_jobs` (:func:`run_ompl`): one
+run per free core, each run's CPU share and load recorded, a run of 0.5 s or more that got
+less than 0.9 of a core refused and run again, every accepted run appended to a journal
+(``<out>.journal.jsonl``) so that an interrupted study resumes.
 
 Results as data
 ---------------
@@ -38,6 +47,7 @@ Usage::
 
     python benchmarks/peers.py                               # the full study, stored in benchmarks/results/
     python benchmarks/peers.py --quick --out /tmp/peers.csv  # smoke run (tiny budgets, 1 seed)
+    python benchmarks/peers.py --scheduler tcp://host:8786   # the OMPL runs on a Dask cluster
 """
 
 from __future__ import annotations
@@ -48,7 +58,6 @@ import math
 import statistics
 import time
 from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -60,11 +69,14 @@ from ..api import plan_scenario
 from ..metrics import measure_scenario_path, plan_poses
 from ..path import NoPathError
 from ..world import Robot, Scenario, load_scenario, make_scenario
+from .executor import FAIRNESS, FairnessRule, Journal, run_jobs
 from .ompl_runner import (
     METRIC_FIELDS,
     PLANNERS,
     PLOT_STEP,
     RESOLUTION,
+    SIMPLIFIED_FIELDS,
+    SIMPLIFY_SECONDS,
     STEP,
     as_scenario,
     check_seed,
@@ -77,20 +89,24 @@ __all__ = [
     "BUDGETS",
     "HEURISTICS",
     "SEEDS",
+    "SIMPLIFIED",
     "Runs",
     "StudyConfig",
     "best_paths",
     "budget_table",
     "full_config",
     "goal_table",
+    "journal_path",
     "load",
     "missing_runs",
+    "ompl_method",
     "quick_config",
     "read_ompl_results",
     "run_ompl",
     "run_segplan",
     "segplan_method",
     "shipped_scenarios",
+    "simplified_rows",
     "solve_segplan",
     "summary_table",
     "warm_up",
@@ -104,6 +120,8 @@ SEEDS = (1, 2, 3, 4, 5)
 SEGPLAN_REPEATS = 5
 #: The goal's time ratio: segplan within 1/50 of OMPL's budget.
 TIME_RATIO = 50.0
+#: The ``method`` suffix of OMPL's paths after its ``PathSimplifier`` (``"BITstar +simplify"``).
+SIMPLIFIED = " +simplify"
 
 
 def load(name: str | Path) -> Scenario:
@@ -137,6 +155,11 @@ def warm_up() -> float:
 def segplan_method(heuristic: str = "a", refine: bool = False) -> str:
     """The ``method`` label of segplan's rows: ``"segplan h'=a"``, ``"segplan h'=a +refine"``."""
     return f"segplan h'={heuristic}" + (" +refine" if refine else "")
+
+
+def ompl_method(planner: str, simplified: bool = False) -> str:
+    """The ``method`` label of OMPL's rows: ``"BITstar"`` (raw), ``"BITstar +simplify"``."""
+    return planner + (SIMPLIFIED if simplified else "")
 
 
 def solve_segplan(
@@ -217,6 +240,7 @@ class StudyConfig:
     resolution: float = RESOLUTION
     step: float = STEP
     segplan_repeats: int = SEGPLAN_REPEATS
+    simplify: float = SIMPLIFY_SECONDS
 
     def jobs(self) -> list:
         """Every OMPL run ``(scenario, planner, budget, seed, space)``, each once."""
@@ -278,40 +302,90 @@ def run_segplan(config: StudyConfig) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def run_ompl(config: StudyConfig, jobs: int = 1) -> tuple[pd.DataFrame, dict]:
-    """Every OMPL run of ``config``, ``jobs`` processes at a time, each in a fresh process.
+def _ompl_job(job: tuple) -> dict:
+    """One OMPL run of a study (module level, so that a Dask worker can run it):
+    ``job = (scenario, planner, budget, seed, space, resolution, step, simplify)``."""
+    s, p, b, seed, space, resolution, step, simplify = job
+    kw = {"resolution": resolution, "step": step, "simplify": simplify}
+    return solve_ompl_isolated(load(s), p, b, seed, space, **kw)
 
-    ``jobs=2`` on a two-core machine runs one OMPL process per core (each planner is
-    single-threaded); more than the free cores would shorten the budgets' real work.
-    A progress bar shows on a terminal only.
+
+def journal_path(csv_path: str | Path) -> Path:
+    """Where :func:`run_ompl` keeps the accepted runs of a study stored at ``csv_path`` while it
+    runs (``<stem>.journal.jsonl`` beside it): an interrupted study resumes from it."""
+    csv_path = Path(csv_path)
+    return csv_path.with_name(csv_path.stem + ".journal.jsonl")
+
+
+def run_ompl(
+    config: StudyConfig,
+    jobs: int | None = None,
+    journal: str | Path | None = None,
+    scheduler=None,
+    rule: FairnessRule = FAIRNESS,
+) -> tuple[pd.DataFrame, dict]:
+    """Every OMPL run of ``config``, each in a fresh process, through the one executor.
+
+    :func:`segplan.studies.executor.run_jobs` runs at most one run per free core (at most
+    ``jobs``; each planner is single-threaded), or on a Dask cluster at ``scheduler``;
+    refuses and re-runs a run that got less CPU than ``rule`` asks; appends each accepted
+    run to ``journal`` (if given), from which a re-run resumes. A progress bar shows on a
+    terminal only.
 
     Returns
     -------
     table : pandas.DataFrame
-        One row per run (:func:`solve_ompl`'s fields, ``messages``), without the poses.
+        One row per run (:func:`solve_ompl`'s fields, ``messages``, ``cpu_share``,
+        ``attempts``), without the poses; the simplified path's measures in the
+        ``simplified_*`` columns (:func:`simplified_rows` turns them into rows).
     paths : dict
         ``(scenario, method, space, budget, seed) -> (n, 3)`` poses (one every
-        :data:`PLOT_STEP` m) of every solved run.
+        :data:`PLOT_STEP` m) of every solved run; the simplified path under the method
+        :func:`ompl_method` ``(planner, True)``.
     """
-    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
-        raise ValueError(f"jobs must be an integer >= 1, got {jobs!r}")
-    todo = config.jobs()
-
-    def one(job):
-        s, p, b, seed, space = job
-        return solve_ompl_isolated(load(s), p, b, seed, space, resolution=config.resolution, step=config.step)
-
-    rows = []
-    with progress(total=len(todo), desc="OMPL") as bar, ThreadPoolExecutor(max_workers=jobs) as pool:
-        for row in pool.map(one, todo):
-            rows.append(row)
-            bar.update()
-    paths = {}
-    for r in rows:
-        poses = r.pop("poses")
+    todo = [(*j, config.resolution, config.step, config.simplify) for j in config.jobs()]
+    records = run_jobs(
+        _ompl_job,
+        todo,
+        key=lambda j: "|".join(map(str, j[:5])),
+        journal=None if journal is None else Journal(journal),
+        rule=rule,
+        cap=jobs,
+        scheduler=scheduler,
+        desc="OMPL",
+    )
+    rows, paths = [], {}
+    for r in records.values():
+        r = dict(r)
+        poses, simple = r.pop("poses"), r.pop("simplified_poses", None)
+        key = (r["scenario"], r["method"], r["space"], r["budget"], r["seed"])
         if poses is not None:
-            paths[(r["scenario"], r["method"], r["space"], r["budget"], r["seed"])] = np.asarray(poses)
+            paths[key] = np.asarray(poses)
+        if simple is not None:
+            paths[(key[0], ompl_method(key[1], True), *key[2:])] = np.asarray(simple)
+        rows.append(r)
     return pd.DataFrame(rows), paths
+
+
+def simplified_rows(table: pd.DataFrame) -> pd.DataFrame:
+    """OMPL's runs after its ``PathSimplifier``, as rows of their own.
+
+    Each OMPL row of ``table`` (``space`` not ``"segplan"``, with the ``simplified_*``
+    columns) becomes a row whose ``method`` is :func:`ompl_method` ``(planner, True)``,
+    whose measures and ``valid`` are the simplified path's, and whose ``seconds`` add the
+    simplification's time to the budget's. Empty when ``table`` has no simplified measures
+    (results stored before harness version 3).
+    """
+    t = table[(table["space"] != "segplan") & ~table["method"].str.endswith(SIMPLIFIED)]
+    if "simplified_valid" not in t.columns or t.empty:
+        return t.iloc[0:0].copy()
+    out = t.copy()
+    for f in SIMPLIFIED_FIELDS:
+        out[f.removeprefix("simplified_")] = out[f]
+    out["valid"] = out["solved"].astype(bool) & out["valid"].astype(bool)
+    out["method"] = out["method"] + SIMPLIFIED
+    out["seconds"] = out["seconds"] + out["simplify_seconds"].fillna(0.0)
+    return out.drop(columns=[*SIMPLIFIED_FIELDS])
 
 
 def missing_runs(table: pd.DataFrame, config: StudyConfig) -> list[tuple]:
@@ -334,7 +408,9 @@ def _paths_path(csv_path: Path) -> Path:
 
 def best_paths(table: pd.DataFrame, paths: dict) -> dict:
     """The poses of the shortest valid run (front-wheel length) per scenario, space, planner
-    and budget: what the figures draw, out of every run's poses."""
+    and budget, raw and simplified (:func:`simplified_rows`): what the figures draw, out of
+    every run's poses."""
+    table = pd.concat([table, simplified_rows(table)], ignore_index=True)
     valid = table[table["valid"] == True]  # noqa: E712 (pandas)
     keep = {}
     for _, g in valid.groupby(["scenario", "space", "method", "budget"], sort=True):
@@ -415,6 +491,11 @@ def goal_table(
     """The issue's goal per scenario: segplan (``heuristic``, refined or as found) against
     the best valid Dubins run at ``budget`` (over planners and seeds), by front-wheel length.
 
+    Like with like: segplan refined against OMPL's paths after its ``PathSimplifier``
+    (:func:`simplified_rows`; ``ompl_planner`` ends in :data:`SIMPLIFIED`), segplan as found
+    (``refine=False``) against OMPL's raw paths. Results stored before OMPL's paths were
+    simplified (harness 2) have raw paths only: then both are judged against those.
+
     Columns: ``segplan_front``, ``segplan_ms``, ``ompl_best_front``, ``ompl_planner``,
     ``ompl_runs`` (valid runs at that budget), ``length_ratio`` (segplan / OMPL),
     ``time_ratio`` (budget / segplan time), ``shorter``, ``fast`` (time ratio >= 50),
@@ -423,6 +504,9 @@ def goal_table(
     rows = []
     ours = table[table["method"] == segplan_method(heuristic, refine)].set_index("scenario")
     peers = table[(table["space"] == "dubins") & (table["budget"] == budget)]
+    peers = peers[~peers["method"].str.endswith(SIMPLIFIED)]
+    if refine and "simplified_valid" in peers.columns:  # results of harness 3 and later
+        peers = simplified_rows(peers)
     for name, runs in peers.groupby("scenario", sort=True):
         valid = runs[runs["valid"] == True]  # noqa: E712
         s = ours.loc[name] if name in ours.index else None
@@ -456,7 +540,8 @@ def goal_table(
 
 
 def summary_table(table: pd.DataFrame) -> pd.DataFrame:
-    """Per scenario: each segplan variant and, per budget, the best valid Dubins run (front length, ms)."""
+    """Per scenario: each segplan variant and, per budget, the best valid Dubins run, raw and
+    simplified (front length, ms)."""
     rows = []
     for name, t in table.groupby("scenario", sort=True):
         row = {"scenario": name}
@@ -467,5 +552,8 @@ def summary_table(table: pd.DataFrame) -> pd.DataFrame:
         d = t[(t["space"] == "dubins") & (t["valid"] == True)]  # noqa: E712
         for b, tb in d.groupby("budget"):
             row[f"OMPL {b:g} s front"] = tb["front_length"].min()
+        d = simplified_rows(t[t["space"] == "dubins"])
+        for b, tb in d[d["valid"]].groupby("budget"):
+            row[f"OMPL {b:g} s simplified front"] = tb["front_length"].min()
         rows.append(row)
     return pd.DataFrame(rows)

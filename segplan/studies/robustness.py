@@ -7,9 +7,12 @@ with 512 obstacles, and a size sweep (:func:`sweep_floors`). Both sides are meas
 
 **OMPL** (optional dependency; slow, run once and stored by :func:`run_ompl` in
 :data:`OMPL_CSV`, :data:`OMPL_PATHS`, :data:`OMPL_PROVENANCE`): BIT* on the Dubins space of
-radius ``L / tan(max_steer)`` at 2 and 5 s, chapter 8's set-up, one process per run; on
-``turn_around`` also RRT* and Informed RRT*. It is the feasibility oracle and, at 5 s, the
-length reference (:func:`reference`).
+radius ``L / tan(max_steer)`` at 2 and 5 s, chapter 8's set-up, one process per run through
+the one executor (:mod:`segplan.studies.executor`: one run per free core, a run starved of
+CPU refused and run again, resumable); on ``turn_around`` also RRT* and Informed RRT*. It
+is the feasibility oracle and, at 5 s, the length reference (:func:`reference`): like with
+like, OMPL's paths after its own ``PathSimplifier`` for the default planner (which
+refines), the raw paths for the paper's search as found.
 
 **segplan** (:func:`solve_segplan`, computed when asked): :func:`segplan.plan_scenario` per
 floor; :func:`compare` adds the ratio to OMPL's length, :func:`verdicts` judges each target
@@ -37,7 +40,7 @@ import os
 import statistics
 import time
 from collections.abc import Callable, Iterable, Sequence
-from concurrent.futures import ThreadPoolExecutor, as_completed
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -50,6 +53,7 @@ from ..world import Scenario
 from . import floors as fl
 from . import ompl_runner as om
 from . import peers
+from .executor import FAIRNESS, FairnessRule, Journal, run_jobs
 from .verdicts import Criterion, claims_table, judge
 
 __all__ = [
@@ -68,6 +72,7 @@ __all__ = [
     "floor_groups",
     "job_id",
     "loglog_slope",
+    "ompl_record",
     "ompl_jobs",
     "read_ompl",
     "read_ompl_paths",
@@ -121,8 +126,10 @@ TIME_LIMIT = 4.0 * SLOW_SECONDS / PAPER_SHARE
 OMPL_COLUMNS = tuple(
     (
         "group floor floor_key generator planner budget seed status solved valid seconds "
-        "cpu_seconds checks ompl_cost front_length rear_length max_curvature "
-        "curvature_jumps reversals clearance messages"
+        "cpu_seconds cpu_share attempts load_before load_after checks ompl_cost front_length "
+        "rear_length max_curvature curvature_jumps reversals clearance simplify_seconds "
+        "simplified_valid simplified_ompl_cost simplified_front_length simplified_rear_length "
+        "simplified_max_curvature simplified_curvature_jumps simplified_clearance messages"
     ).split()
 )
 SEGPLAN_COLUMNS = tuple(
@@ -134,7 +141,7 @@ SEGPLAN_COLUMNS = tuple(
 
 #: Issue 12's targets: each a criterion, judged by :func:`verdicts` (``varies``: a time).
 _SHARE = "share of the floors OMPL solves that segplan solves validly"
-_RATIO = "front-wheel length over BIT*'s at 5 s (random floors both solve)"
+_RATIO = "front-wheel length over BIT*'s at 5 s after OMPL's PathSimplifier (random floors both solve)"
 TARGETS = {
     "success, any headings": Criterion(f"{_SHARE}, any headings", ">=", 0.99, fmt="{:.1%}"),
     "success, natural headings": Criterion(f"{_SHARE}, natural headings", ">=", 0.99, fmt="{:.1%}"),
@@ -146,7 +153,10 @@ TARGETS = {
     "front-wheel length / BIT* 5 s, median": Criterion(f"median {_RATIO}", "<=", 1.00, fmt="{:.3f}"),
     "front-wheel length / BIT* 5 s, worst": Criterion(f"largest {_RATIO}", "<=", 1.15, fmt="{:.3f}"),
     "turn_around / best OMPL at 5 s": Criterion(
-        "front-wheel length on turn_around over the best OMPL result at 5 s", "<=", 1.05, fmt="{:.3f}"
+        "front-wheel length on turn_around over the best simplified OMPL result at 5 s",
+        "<=",
+        1.05,
+        fmt="{:.3f}",
     ),
     "160 x 96 m, 512 obstacles: plan time median": Criterion(
         "median plan time across 160 x 96 m, 512 obstacles [s]", "<=", 1.0, varies=True
@@ -222,36 +232,44 @@ def job_id(job: tuple) -> str:
 
 
 # -- OMPL side (stored) -------------------------------------------------------------------
-def ompl_row(job: tuple, resolution: float = om.RESOLUTION) -> tuple[dict, list | None]:
+def ompl_record(job: tuple, resolution: float = om.RESOLUTION) -> dict:
     """One OMPL run in a fresh process (:func:`segplan.studies.ompl_runner.solve_ompl_isolated`):
-    its CSV row and its path (poses about every :data:`PATH_STEP` m, or None)."""
+    its CSV row (:data:`OMPL_COLUMNS`) with ``poses`` and ``simplified_poses`` (about one every
+    :data:`PATH_STEP` m, mm; or None) added. Module level, so that a Dask worker runs it."""
     group, sc, planner, budget, seed = job
     r = om.solve_ompl_isolated(sc, planner, budget, seed, "dubins", resolution=resolution)
     row = {c: r.get(c, math.nan) for c in OMPL_COLUMNS}
     row.update(group=group, floor=sc.name, floor_key=fl.floor_key(sc), generator=fl.GENERATOR_VERSION)
     row.update(planner=planner, budget=float(budget), seed=int(seed))
-    poses = r.get("poses")
-    if poses is not None:
-        P = np.asarray(poses)
-        k = max(1, round(PATH_STEP / om.PLOT_STEP))
-        P = P[np.unique(np.r_[np.arange(0, len(P), k), len(P) - 1])]
-        poses = np.round(P, 3).tolist()
-    return row, poses
+    k = max(1, round(PATH_STEP / om.PLOT_STEP))
+    for name in ("poses", "simplified_poses"):
+        P = r.get(name)
+        if P is not None:
+            P = np.asarray(P)
+            P = np.round(P[np.unique(np.r_[np.arange(0, len(P), k), len(P) - 1])], 3).tolist()
+        row[name] = P
+    return row
 
 
 def read_ompl(path: str | Path = OMPL_CSV) -> pd.DataFrame:
-    """The stored OMPL runs (empty frame with :data:`OMPL_COLUMNS` if none); ``solved`` and
-    ``valid`` as booleans."""
+    """The stored OMPL runs (empty frame with :data:`OMPL_COLUMNS` if none); ``solved``,
+    ``valid`` and ``simplified_valid`` as booleans. Columns a file written before harness
+    version 3 lacks (CPU share, load, the simplified path) are NaN (``simplified_valid``
+    False)."""
     if not Path(path).exists():
         return pd.DataFrame(columns=list(OMPL_COLUMNS))
     t = pd.read_csv(path, keep_default_na=False, na_values=[""])
-    for c in ("solved", "valid"):
+    for c in OMPL_COLUMNS:
+        if c not in t.columns:
+            t[c] = False if c == "simplified_valid" else math.nan
+    for c in ("solved", "valid", "simplified_valid"):
         t[c] = t[c].astype(bool)
     return t
 
 
 def read_ompl_paths(path: str | Path = OMPL_PATHS) -> dict[str, np.ndarray]:
-    """Stored OMPL paths at the reference budget, by :func:`job_id`."""
+    """Stored OMPL paths at the reference budget, by :func:`job_id` (the simplified path of a
+    run by its id with the planner ``"<planner> +simplify"``)."""
     out = {}
     if Path(path).exists():
         with gzip.open(path, "rt") as fh:
@@ -262,48 +280,74 @@ def read_ompl_paths(path: str | Path = OMPL_PATHS) -> dict[str, np.ndarray]:
     return out
 
 
+def _simplified_id(run_id: str) -> str:
+    floor, planner, rest = run_id.split("|", 2)
+    return f"{floor}|{peers.ompl_method(planner, True)}|{rest}"
+
+
+def _stored_records(out: Path, paths_out: Path, jobs: list[tuple], rule: FairnessRule) -> dict[str, dict]:
+    """The runs already stored in ``out`` that the study can keep, as :func:`ompl_record`'s
+    records by :func:`job_id`: measured on today's floor, by this harness (every column of
+    :data:`OMPL_COLUMNS`) and accepted by ``rule``. Raises RuntimeError if a stored run was
+    measured on another floor."""
+    have = read_ompl(out)
+    want = {job_id(j): fl.floor_key(j[1]) for j in jobs}
+    ids = [
+        f"{f}|{p}|{b:g}|{s}"
+        for f, p, b, s in zip(have["floor"], have["planner"], have["budget"], have["seed"], strict=True)
+    ]
+    stale = [i for i, k in zip(ids, have["floor_key"], strict=True) if i in want and want[i] != k]
+    if stale:
+        raise RuntimeError(f"{len(stale)} stored runs were measured on other floors: delete {out} first")
+    paths = read_ompl_paths(paths_out)
+    keep = {}
+    for i, (_, r) in zip(ids, have.iterrows(), strict=True):
+        record = {c: r[c] for c in OMPL_COLUMNS}
+        if i not in want or pd.isna(r["cpu_share"]) or rule.refuses(record):
+            continue
+        record = {k: (v.item() if isinstance(v, np.generic) else v) for k, v in record.items()}
+        poses, simple = paths.get(i), paths.get(_simplified_id(i))
+        record["poses"] = None if poses is None else poses.tolist()
+        record["simplified_poses"] = None if simple is None else simple.tolist()
+        keep[i] = record
+    return keep
+
+
 def run_ompl(
     jobs: list[tuple],
     out: str | Path = OMPL_CSV,
     paths_out: str | Path = OMPL_PATHS,
     provenance: str | Path = OMPL_PROVENANCE,
-    workers: int = 2,
-    progress: Callable[[str], None] | None = None,
+    workers: int | None = None,
+    scheduler=None,
+    rule: FairnessRule = FAIRNESS,
     argv: Sequence[str] = ("benchmarks/robustness.py", "--ompl"),
 ) -> pd.DataFrame:
-    """Run the OMPL jobs not stored yet, ``workers`` processes at a time; append each row
-    to ``out`` as it finishes, the paths at the reference budget to ``paths_out``, and
-    keep ``provenance`` up to date (a session per call: :func:`segplan.studies.ompl_runner.provenance`
-    of ``argv``, with the runs done and the load average during them). Returns the whole
-    stored table."""
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    """Run the OMPL jobs not stored yet through the one executor; store every run; the whole table.
+
+    :func:`segplan.studies.executor.run_jobs` runs at most one run per free core (at most
+    ``workers``), or on a Dask cluster at ``scheduler``, and refuses and re-runs a run that
+    got less CPU than ``rule`` asks. Runs already in ``out`` that this harness measured and
+    ``rule`` accepts are kept; each new run is appended to a journal
+    (``<out stem>.journal.jsonl``) as it finishes, so an interrupted study resumes. At the
+    end ``out`` (one row per run, raw and simplified measures), ``paths_out`` (the paths,
+    raw and simplified, at :data:`REFERENCE_BUDGET`) are rewritten and the journal removed;
+    ``provenance`` gains a session (:func:`segplan.studies.ompl_runner.provenance` of
+    ``argv``, with the fairness rule, the runs done, the refusals and the load during them).
+    """
     out, paths_out, provenance = Path(out), Path(paths_out), Path(provenance)
     out.parent.mkdir(parents=True, exist_ok=True)
-    have = read_ompl(out)
-    done = {
-        f"{f}|{p}|{b:g}|{s}": k
-        for f, p, b, s, k in zip(
-            have["floor"], have["planner"], have["budget"], have["seed"], have["floor_key"], strict=True
-        )
-    }
-    stale = [j for j in jobs if job_id(j) in done and done[job_id(j)] != fl.floor_key(j[1])]
-    if stale:
-        raise RuntimeError(f"{len(stale)} stored runs were measured on other floors: delete {out} first")
-    todo = [j for j in jobs if job_id(j) not in done]
+    journal = Journal(peers.journal_path(out))
+    if not journal.path.exists():
+        for k, record in _stored_records(out, paths_out, jobs, rule).items():
+            journal.append(k, record)
     record = json.loads(provenance.read_text()) if provenance.exists() else {"sessions": []}
-    session = om.provenance(list(argv), None, workers)
-    session.update(
-        runs_to_do=len(todo),
-        note=(
-            "Measured on a shared 2-core machine while other work (other helpers' tests and "
-            "notebooks) ran on it: budgets are wall-clock, so BIT* got less CPU than its budget "
-            "in some runs (cpu_seconds / seconds < 1)."
-        ),
-    )
+    session = om.provenance(list(argv), None, workers, rule)
+    session["note"] = f"Fair runs: {rule.text()}."
+    session["scheduler"] = None if scheduler is None else str(scheduler)
     record.update(
         what="OMPL BIT* (and RRT*, Informed RRT* on turn_around) on segplan.studies.floors, "
-        "segplan.studies.robustness",
+        "segplan.studies.robustness; raw paths and after OMPL's PathSimplifier (simplified_*)",
         generator_version=fl.GENERATOR_VERSION,
         budgets=list(BUDGETS),
         seeds=dict(
@@ -316,41 +360,52 @@ def run_ompl(
         motion_check_resolution_m=om.RESOLUTION,
         measured_by="segplan.metrics.measure_scenario_path, samples every 1 cm",
     )
+    before = set(journal.read())
+    records = run_jobs(
+        partial(ompl_record, resolution=om.RESOLUTION),
+        jobs,
+        key=job_id,
+        journal=journal,
+        rule=rule,
+        cap=workers,
+        scheduler=scheduler,
+        desc="OMPL",
+    )
+    new = [r for k, r in records.items() if k not in before]
+    loads = [x for r in new for x in (r["load_before"], r["load_after"]) if math.isfinite(x)]
+    session.update(
+        runs_done=len(new),
+        runs_kept=len(records) - len(new),
+        refused=sum(int(r["attempts"]) - 1 for r in new),
+        finished=datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+        load_average_end=list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+    )
+    if loads:
+        session["load_average_1min"] = {"min": min(loads), "mean": statistics.fmean(loads), "max": max(loads)}
     record["sessions"].append(session)
+    rows = [{c: r[c] for c in OMPL_COLUMNS} for r in records.values()]
+    _replace(out, lambda tmp: pd.DataFrame(rows, columns=list(OMPL_COLUMNS)).to_csv(tmp, index=False))
 
-    def save_record():
-        tmp = provenance.with_suffix(".tmp")
-        tmp.write_text(json.dumps(record, indent=1) + "\n")
-        tmp.replace(provenance)
+    def write_paths(tmp: Path) -> None:
+        with gzip.GzipFile(tmp, "wb", mtime=0) as fh:
+            for k, r in records.items():
+                if r["budget"] != REFERENCE_BUDGET:
+                    continue
+                for i, poses in ((k, r["poses"]), (_simplified_id(k), r["simplified_poses"])):
+                    if poses is not None:
+                        fh.write((json.dumps({"id": i, "poses": poses}) + "\n").encode())
 
-    save_record()
-    header = not out.exists() or out.stat().st_size == 0
-    loads = []
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = {pool.submit(ompl_row, j): j for j in todo}
-        for n, fut in enumerate(as_completed(futures), 1):
-            job = futures[fut]
-            row, poses = fut.result()
-            pd.DataFrame([row], columns=list(OMPL_COLUMNS)).to_csv(out, mode="a", header=header, index=False)
-            header = False
-            if poses is not None and job[3] == REFERENCE_BUDGET:
-                with gzip.open(paths_out, "at") as fh:
-                    fh.write(json.dumps({"id": job_id(job), "poses": poses}) + "\n")
-            loads.append(os.getloadavg()[0])
-            if progress:
-                progress(
-                    f"[{n}/{len(todo)}] {job_id(job)} solved={row['solved']} front={row['front_length']:.3f}"
-                )
-            if n % 20 == 0 or n == len(todo):
-                session.update(
-                    runs_done=n,
-                    load_average_1min={"min": min(loads), "mean": statistics.fmean(loads), "max": max(loads)},
-                )
-                save_record()
-    session["finished"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
-    session["load_average_end"] = list(os.getloadavg())
-    save_record()
+    _replace(paths_out, write_paths)
+    _replace(provenance, lambda tmp: tmp.write_text(json.dumps(record, indent=1) + "\n"))
+    journal.path.unlink(missing_ok=True)
     return read_ompl(out)
+
+
+def _replace(path: Path, write: Callable[[Path], None]) -> None:
+    """Write ``path`` through a temporary file beside it (an interruption leaves the old file)."""
+    tmp = path.with_name(path.name + ".tmp")
+    write(tmp)
+    tmp.replace(path)
 
 
 def session_lines(record: dict) -> list[str]:
@@ -484,39 +539,63 @@ def slow_floors(table: pd.DataFrame, limit: float = SLOW_SECONDS) -> pd.DataFram
 
 
 # -- comparison and targets -------------------------------------------------------------------
-def reference(ompl: pd.DataFrame) -> pd.DataFrame:
+def reference(ompl: pd.DataFrame, simplified: bool = True) -> pd.DataFrame:
     """Per floor, from the stored OMPL runs: ``ompl_runs``, ``ompl_solved`` (some run found
-    a valid path: the feasibility oracle), ``ompl_front`` (the shortest valid front-wheel
-    length at :data:`REFERENCE_BUDGET`, over planners and seeds), ``ompl_planner``."""
+    a valid path, raw or simplified: the feasibility oracle), ``ompl_front`` (the shortest
+    valid front-wheel length at :data:`REFERENCE_BUDGET`, over planners and seeds),
+    ``ompl_planner``.
+
+    Like with like: ``simplified=True`` (for a planner that refines its plans, the default
+    planner) takes OMPL's paths after its ``PathSimplifier`` (the ``simplified_*`` columns;
+    ``ompl_planner`` then ends in ``" +simplify"``), ``simplified=False`` (the paper's search
+    as found) the raw paths (also for runs stored before harness version 3, which have no
+    simplified path). ``ompl_raw_front`` and ``ompl_simplified_front`` are both given.
+    """
     cols = ["floor", "ompl_key", "ompl_runs", "ompl_solved", "ompl_front", "ompl_planner"]
+    cols += ["ompl_raw_front", "ompl_simplified_front"]
     if ompl.empty:
         return pd.DataFrame(columns=cols)
     t = ompl.copy()
     t["valid"] = t["valid"].astype(bool)
+    if "simplified_valid" not in t.columns:
+        t["simplified_valid"], t["simplified_front_length"] = False, math.nan
+    t["simplified_valid"] = t["simplified_valid"].astype(bool) & t["solved"].astype(bool)
+    if not t["simplified_valid"].any():  # stored before OMPL's paths were simplified (harness 2)
+        simplified = False
     rows = []
     for name, runs in t.groupby("floor", sort=False):
-        ok = runs[runs["valid"]]
-        ref = ok[ok["budget"] == REFERENCE_BUDGET]
-        best = ref.loc[ref["front_length"].idxmin()] if len(ref) else None
+        ref = runs[runs["budget"] == REFERENCE_BUDGET]
+        best = {}
+        for label, ok, front in (
+            ("raw", ref["valid"], "front_length"),
+            ("simplified", ref["simplified_valid"], "simplified_front_length"),
+        ):
+            r = ref[ok]
+            best[label] = r.loc[r[front].idxmin()] if len(r) else None
+            best[label + "_front"] = math.nan if best[label] is None else float(best[label][front])
+        side = "simplified" if simplified else "raw"
+        b = best[side]
         rows.append(
             {
                 "floor": name,
                 "ompl_key": runs["floor_key"].iloc[0],
                 "ompl_runs": len(runs),
-                "ompl_solved": bool(len(ok)),
-                "ompl_front": math.nan if best is None else float(best["front_length"]),
-                "ompl_planner": "" if best is None else str(best["planner"]),
+                "ompl_solved": bool((runs["valid"] | runs["simplified_valid"]).any()),
+                "ompl_front": best[side + "_front"],
+                "ompl_planner": "" if b is None else peers.ompl_method(str(b["planner"]), simplified),
+                "ompl_raw_front": best["raw_front"],
+                "ompl_simplified_front": best["simplified_front"],
             }
         )
     return pd.DataFrame(rows, columns=cols)
 
 
-def compare(seg: pd.DataFrame, ompl: pd.DataFrame) -> pd.DataFrame:
+def compare(seg: pd.DataFrame, ompl: pd.DataFrame, simplified: bool = True) -> pd.DataFrame:
     """segplan's rows with the OMPL reference of their floor and ``ratio`` (segplan's
-    front-wheel length over :func:`reference`'s ``ompl_front``; NaN unless both have a
-    valid path). Raises ValueError if a floor's stored OMPL runs were made on another floor
-    (``floor_key``)."""
-    out = seg.merge(reference(ompl), on="floor", how="left")
+    front-wheel length over :func:`reference`'s ``ompl_front``, OMPL's paths simplified or
+    raw as ``simplified`` says; NaN unless both have a valid path). Raises ValueError if a
+    floor's stored OMPL runs were made on another floor (``floor_key``)."""
+    out = seg.merge(reference(ompl, simplified), on="floor", how="left")
     stale = out["ompl_key"].notna() & (out["ompl_key"] != out["floor_key"])
     if stale.any():
         raise ValueError(f"ompl: stored runs of {list(out.loc[stale, 'floor'])} were made on other floors")
