@@ -72,6 +72,18 @@ class HeuristicFit(NamedTuple):
     n_problems: int
     rms_z: float
 
+    @classmethod
+    def from_values(cls, values) -> HeuristicFit:
+        """The fit of a ``"heuristic_frame"`` entry of the constants (the data file's form)."""
+        return cls(
+            np.array(values["coef"], dtype=float),
+            int(values["degree"]),
+            float(values["phi_max"]),
+            (float(values["log_ratio_range"][0]), float(values["log_ratio_range"][1])),
+            int(values["n_problems"]),
+            float(values["rms_z"]),
+        )
+
     def exponents(self) -> list[tuple[int, int, int]]:
         """``(i, j, k)`` of the monomials ``s^i q^j l^k``."""
         return _exponents(self.degree)
@@ -127,15 +139,7 @@ def heuristic_coefficients() -> HeuristicFit:
     typed in, and nothing is fitted at run time.
     """
     if "fit" not in _FIT_CACHE:
-        c = constants.heuristic_frame()
-        _FIT_CACHE["fit"] = HeuristicFit(
-            np.array(c["coef"], dtype=float),
-            int(c["degree"]),
-            float(c["phi_max"]),
-            (float(c["log_ratio_range"][0]), float(c["log_ratio_range"][1])),
-            int(c["n_problems"]),
-            float(c["rms_z"]),
-        )
+        _FIT_CACHE["fit"] = HeuristicFit.from_values(constants.heuristic_frame())
     return _FIT_CACHE["fit"]
 
 

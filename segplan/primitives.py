@@ -19,14 +19,28 @@ Which primitives: from each heading, the unit straight step, and for every turn 
 two heading steps (about 22.5 or 45 deg) the cheapest lattice end points, fewest first,
 skipping one whose end state a chain of at most three kept primitives already reaches
 at no more than ``1 + PRUNE`` times its cost (the pruning of Pivtoraiko and Kelly's
-state lattices). The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg
-(exact in integers). A union's shape and cost do not change under a rigid motion, so the
-set is made once per ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in
-an explicit least-recently-used cache) and reused by every plan. The sets of the default
-lattice (45 deg steering, resolutions ``L / 8`` and ``L / 16``) are package data for a
-unit ``L`` (``primitives.npz``, written with its provenance by ``python -m segplan.fit``,
-which recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a
-fresh process does not spend seconds computing them.
+state lattices).
+
+The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg (exact in integers). A
+union's shape and cost do not change under a rigid motion, so the set is made once per
+``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in an explicit least-recently-
+used cache) and reused by every plan. The sets of the default lattice (45 deg steering,
+resolutions ``L / 8`` and ``L / 16``) are package data for a unit ``L``
+(``primitives.npz``, written with its provenance by ``python -m segplan.fit``, which
+recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a fresh
+process does not spend seconds computing them.
+
+The selection is the same on every processor. Many candidates tie exactly (a turn and its
+mirror image about a diagonal or an axis of the lattice have the same chord, turn and
+LONGD), and their estimates then differ only in the last bits, which vectorised maths and
+BLAS kernels round differently from one processor to the next (up to 5e-16 relative,
+measured between OpenBLAS's Haswell, SkylakeX, Sandybridge, Prescott and Nehalem kernels
+and numpy's AVX-512, AVX2 and baseline code paths). Candidates are therefore ranked by
+their estimate rounded to :data:`RANK_DECIMALS` decimals of ``L``, ties broken by their
+integers ``(h0, h1, i, j)`` (:func:`_rank`). Every other decision of the selection (a
+chain's cost against its budget, a peak curvature against the limit, a sample against the
+reach bound) keeps a margin ten orders of magnitude above the rounding differences on the
+stored sets (:func:`selection_margins`; ``tests/test_primitives_data.py``).
 
 Every primitive also carries points of its swept segment (rear point A, front wheel B and
 points between them, at abscissae along the union) relative to its start, and ``delta``:
@@ -65,6 +79,7 @@ __all__ = [
     "max_reach",
     "primitive_arrays",
     "primitive_set",
+    "selection_margins",
     "stored_sets",
 ]
 
@@ -80,6 +95,12 @@ PRUNE = 0.03
 TURNS = (-2, -1, 1, 2)
 #: Turning primitives kept per start heading and turn, at most.
 PER_TURN = 3
+#: Decimals (of ``L``) to which a candidate's estimated LONGD is rounded before ranking
+#: (:func:`_rank`): 1e-9 L merges exact ties that rounding split by up to 5e-16 relative,
+#: and only those (the closest distinct estimates of the stored sets are 7e-6 L apart:
+#: :func:`selection_margins`, ``tests/test_primitives_data.py``); a tie straddles a rounding
+#: boundary with probability about 1e-15 / 1e-9 per pair.
+RANK_DECIMALS = 9
 #: Abscissae (fractions of the frame span) and positions along the segment of the samples.
 SAMPLE_S = np.linspace(0.0, 1.0, 13)
 SAMPLE_T = np.linspace(0.0, 1.0, 7)
@@ -259,19 +280,28 @@ def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
     return out
 
 
-def _best_alphas(d, phi0, phi1, lo, hi, L, kmax) -> np.ndarray:
+def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) -> np.ndarray:
     """Per union: the optimal frame's alpha if its cubic keeps the steering limit (sampled),
     else the alpha of least sampled peak curvature among ``_STEER_ALPHAS`` if that keeps it,
-    else NaN (vectorised)."""
+    else NaN (vectorised). ``margins``: see :func:`selection_margins`."""
     a = np.clip(np.asarray(heuristic_alpha(d, phi0, phi1, L), dtype=float), lo + 1e-9, hi - 1e-9)
-    bad = ~(_peaks(d, phi0, phi1, a) <= kmax)
+    peak = _peaks(d, phi0, phi1, a)
+    bad = ~(peak <= kmax)
+    checked = [peak]
     if bad.any():
         f = (np.arange(1, _STEER_ALPHAS + 1) / (_STEER_ALPHAS + 1))[None, :]
         grid = lo[bad, None] + (hi[bad] - lo[bad])[:, None] * f
         pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid)
         k = np.argmin(pk, axis=1)
         best = grid[np.arange(len(k)), k]
-        a[bad] = np.where(pk[np.arange(len(k)), k] <= kmax, best, np.nan)
+        least = pk[np.arange(len(k)), k]
+        a[bad] = np.where(least <= kmax, best, np.nan)
+        checked.append(least)
+        if margins is not None and pk.shape[1] > 1:
+            two = np.sort(pk, axis=1)[:, :2]
+            _note(margins, "frame", np.min((two[:, 1] - two[:, 0]) / two[:, 0]))
+    if margins is not None:
+        _note(margins, "steer", np.min(np.abs(np.concatenate(checked) - kmax)) / kmax)
     return a
 
 
@@ -307,6 +337,13 @@ def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
     return Primitive(
         h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, delta
     )
+
+
+def _rank(estimate: float, key: tuple[int, int, int, int], L: float) -> tuple:
+    """Rank of a candidate primitive: its estimated LONGD rounded to :data:`RANK_DECIMALS`
+    decimals of ``L``, then its integers ``key = (h0, h1, i, j)`` (module docstring: the
+    same order on every processor)."""
+    return (round(estimate / L, RANK_DECIMALS), key)
 
 
 def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
@@ -353,10 +390,14 @@ def fine_points(ps: PrimitiveSet) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
     return out
 
 
-def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) -> bool:
+def _reaches(
+    kept: list, h0: int, target: tuple, budget: float, depth: int = 3, margins: dict | None = None
+) -> bool:
     """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?
 
-    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``.
+    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``. With
+    ``margins`` (a dict), the smallest ``|cost - budget| / budget`` of the chains compared is
+    kept under the key ``"budget"`` (:func:`selection_margins`).
     """
     frontier = [(0, 0, h0, 0.0)]
     for _ in range(depth):
@@ -364,6 +405,8 @@ def _reaches(kept: list, h0: int, target: tuple, budget: float, depth: int = 3) 
         for i, j, h, c in frontier:
             for di, dj, h1, cost in kept[h]:
                 c2 = c + cost
+                if margins is not None:
+                    _note(margins, "budget", abs(c2 - budget) / budget)
                 if c2 > budget:
                     continue
                 s = (i + di, j + dj, h1)
@@ -469,8 +512,39 @@ def stored_sets() -> dict[int, dict[str, np.ndarray]]:
     return out
 
 
-def compute_primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+def _note(margins: dict, key: str, value: float) -> None:
+    margins[key] = min(margins.get(key, math.inf), float(value))
+
+
+def selection_margins(L: float, max_steer: float, resolution: float) -> dict[str, float]:
+    """How close each kind of decision of :func:`compute_primitive_set` came to going the other way.
+
+    The selection is the same on every processor if no decision is closer to its threshold
+    than the rounding differences between processors (about 5e-16 relative; module
+    docstring). Exact ties of the ranking are not decisions: they are broken on integers.
+
+    Returns
+    -------
+    dict
+        Smallest relative margins: ``"rank"``, the closest two distinct rounded estimates
+        (in units of ``L``); ``"budget"``, a chain's cost against the pruning budget;
+        ``"frame"``, the least and the next least sampled peak curvature of the frames tried
+        where the optimal frame breaks the steering limit; ``"steer"``, a sampled or exact
+        peak curvature against the limit; ``"reach"``, a primitive's farthest sample against
+        :func:`max_reach`.
+    """
+    margins: dict[str, float] = {}
+    compute_primitive_set(L, max_steer, resolution, margins=margins)
+    return margins
+
+
+def compute_primitive_set(
+    L: float, max_steer: float, resolution: float, margins: dict | None = None
+) -> PrimitiveSet:
     """:func:`primitive_set` computed, never read from the stored sets (module docstring).
+
+    ``margins``: a dict that receives the decisions' smallest margins
+    (:func:`selection_margins`), or None.
 
     Raises
     ------
@@ -490,13 +564,16 @@ def compute_primitive_set(L: float, max_steer: float, resolution: float) -> Prim
     cands = []
     for h0 in range(4):
         I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
-        a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6))
+        a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6), margins)
         ok = np.isfinite(a)
         est = longd_gauss_intrinsic(d[ok], phi0[ok], phi1[ok], a[ok], L)
         for row in zip(est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok], strict=True):
             e, i, j, h1, al, dd, p0, p1 = (float(v) for v in row)
             cands.append((e, h0, int(h1), int(i), int(j), al, dd, p0, p1))
-    cands.sort()
+    cands.sort(key=lambda c: _rank(c[0], c[1:5], L))
+    if margins is not None:
+        ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
+        _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
 
     def all_headings(b):
         return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
@@ -515,9 +592,12 @@ def compute_primitive_set(L: float, max_steer: float, resolution: float) -> Prim
         key = (h0, (h1 - h0) % NH)
         if per.get(key, 0) >= PER_TURN:
             continue
-        if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE)):
+        if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
             continue
         p = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
+        if margins is not None:
+            _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
+            _note(margins, "reach", abs(np.abs(p.points).max() - bound) / bound)
         if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
             continue
         base[h0].append(p)

@@ -160,7 +160,9 @@ def test_enclosed_goal_fails_fast_with_the_explored_tree():
     with pytest.raises(NoPathError) as info:
         plan_scenario(sc)
     err = info.value
-    assert err.reason == "exhausted" and err.seconds < 1.0
+    # fast, measured without a clock (a loaded machine must not fail a unit test; the time
+    # is chapter 9's target): the flood fill answers before the lattice expands one state
+    assert err.reason == "exhausted" and err.expanded == 0 and "not connected" in str(err)
     assert err.best.nodes[0] == sc.start
 
 

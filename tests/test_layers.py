@@ -80,14 +80,15 @@ def test_every_module_declares_its_exports():
             assert not item.startswith("_"), f"{name}.__all__ exports the private {item!r}"
 
 
-def test_no_module_exceeds_600_lines():
-    """Issue 11: no module of ``segplan/`` over 600 lines (split a coherent part out instead)."""
+def test_no_module_exceeds_800_lines():
+    """A smoke alarm, not a rule (issue 24): a module is one idea, split where a concept ends,
+    never to fit a number; a module over 800 lines is the place to look for two ideas."""
     lines = {
         str(path.relative_to(ROOT)): len(path.read_text(encoding="utf-8").splitlines())
         for path in sorted((ROOT / "segplan").rglob("*.py"))
     }
     assert len(lines) > 20
-    too_long = {name: n for name, n in lines.items() if n > 600}
+    too_long = {name: n for name, n in lines.items() if n > 800}
     assert not too_long, too_long
 
 
