@@ -13,7 +13,7 @@ from segplan.studies.approx import (
     variant_error_study,
 )
 from segplan.studies.frames import case_a_boundary, paper_case_a_excess
-from segplan.studies.romberg_cost import romberg_matched, romberg_work
+from segplan.studies.romberg_cost import matched_cost_ratios, romberg_matched, romberg_work
 
 DEG = math.pi / 180.0
 PRINTED = "simpson|cross=1/2|exp=-5/2"
@@ -63,3 +63,23 @@ def test_case_a_boundary_brackets_the_failure():
     assert paper_case_a_excess(dl, big, -(t + 0.5 * step)) <= 1e-8  # above: exact
     with pytest.raises(ValueError, match="opposite"):
         paper_case_a_excess(dl, 0.3, 0.2)
+
+
+def test_matched_cost_ratios_are_the_evaluation_count_over_the_approximations_cost():
+    cases = sample_domain(40, seed=3)
+    matched = romberg_matched(*cases, max_error=1e-3) | {"cases": cases}
+    out = matched_cost_ratios(matched, n_scalar=20, n_vector=2000, repeats=1)
+    assert set(out) == {
+        "approx_evaluations",
+        "evaluation_ratio",
+        "romberg_us",
+        "approx_us",
+        "time_ratio_scalar",
+    }
+    assert out["evaluation_ratio"] == pytest.approx(matched["mean_evaluations"] / out["approx_evaluations"])
+    assert out["time_ratio_scalar"] == pytest.approx(out["romberg_us"] / out["approx_us"])
+    assert all(v > 0 and math.isfinite(v) for v in out.values())
+    with pytest.raises(ValueError, match="matched"):
+        matched_cost_ratios(matched | {"rtol": math.nan})
+    with pytest.raises(ValueError, match="repeats"):
+        matched_cost_ratios(matched, repeats=0)

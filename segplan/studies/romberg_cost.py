@@ -6,21 +6,23 @@ integrand evaluations Romberg needs for the exact LONGD [1] case by case
 (:func:`romberg_work`), find the loosest Romberg tolerance whose measured error matches
 [2]'s largest error (:func:`romberg_matched`), and make chapter 3's comparison on its
 unions (:func:`matched_cost_study`, shared with ``benchmarks/longd_speed.py`` and the
-README). The cases and [2]'s errors come from :mod:`segplan.studies.approx`; nothing here
-is part of the stable API.
+README), and time both sides of it (:func:`matched_cost_ratios`, the one measurement of
+Romberg over [2] that the chapter and the README both quote). The cases and [2]'s errors
+come from :mod:`segplan.studies.approx`; nothing here is part of the stable API.
 """
 
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 
-from ..cost import exact_values, longd_integrand
+from ..cost import exact_values, longd_approx_intrinsic, longd_integrand
 from ..romberg import romberg
 from .approx import error_study, sample_domain
 
-__all__ = ["MATCH_RTOLS", "matched_cost_study", "romberg_matched", "romberg_work"]
+__all__ = ["MATCH_RTOLS", "matched_cost_ratios", "matched_cost_study", "romberg_matched", "romberg_work"]
 
 
 def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
@@ -132,3 +134,72 @@ def matched_cost_study(n: int = 2000, seed: int = 11):
     approx_max = float(error_study(*cases)["abs_error"].max())
     out = romberg_matched(*cases, approx_max, reference=reference)
     return {"cases": cases, "reference": reference, "approx_max_error": approx_max, **out}
+
+
+def _per_call(fn, calls: int, repeats: int) -> float:
+    # Best CPU time (process time: the machine is shared) per call of fn(), fn making `calls` calls.
+    best = math.inf
+    for _ in range(repeats):
+        t0 = time.process_time()
+        fn()
+        best = min(best, time.process_time() - t0)
+    return best / calls
+
+
+def matched_cost_ratios(
+    matched: dict, n_scalar: int = 1000, n_vector: int = 200_000, repeats: int = 5
+) -> dict:
+    """Romberg at [2]'s maximum error over [2]: in integrand evaluations and in time (varies).
+
+    The one measurement of the paper's "2/5 to 1/3 of exact computational cost [...] using
+    Romberg integration with the same maximum error bound" that chapter 3 and the README
+    (``benchmarks/longd_speed.py``) both quote. On the unions of ``matched``
+    (:func:`matched_cost_study`):
+
+    - **in evaluations**: Romberg's mean integrand evaluations at the matched tolerance
+      (deterministic) over [2]'s cost counted in integrand evaluations: the CPU time of [2]
+      over that of one integrand evaluation, both vectorised over ``n_vector`` unions of the
+      same domain (:func:`segplan.studies.approx.sample_domain`, seed 12);
+    - **in time**: Romberg from level 1 at the matched tolerance (:func:`romberg_work`)
+      against [2] (``longd_approx_intrinsic``), both as scalar calls on the first
+      ``n_scalar`` unions.
+
+    Times are the best CPU time of ``repeats`` runs (``time.process_time``), so they vary
+    with the machine, less with its load.
+
+    Returns
+    -------
+    dict
+        ``approx_evaluations`` ([2]'s cost in integrand evaluations), ``evaluation_ratio``,
+        ``romberg_us`` and ``approx_us`` (scalar, microseconds per union) and
+        ``time_ratio_scalar``.
+
+    Raises
+    ------
+    ValueError
+        If ``matched`` found no tolerance (``rtol`` NaN) or the counts are not positive.
+    """
+    if not math.isfinite(matched.get("rtol", math.nan)):
+        raise ValueError("matched must hold a matched tolerance (matched_cost_study found none)")
+    for name, v in (("n_scalar", n_scalar), ("n_vector", n_vector), ("repeats", repeats)):
+        if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+            raise ValueError(f"{name} must be a positive integer, got {v!r}")
+    td, tp0, tp1, ta = sample_domain(n_vector, seed=12)
+    point = np.array([0.5])
+    t_approx_vec = _per_call(lambda: longd_approx_intrinsic(td, tp0, tp1, ta, 1.0), n_vector, repeats)
+    t_point = _per_call(lambda: longd_integrand(point, td, tp0, tp1, ta, 1.0), n_vector, repeats)
+    cases = tuple(np.asarray(v)[:n_scalar] for v in matched["cases"])
+    scalar = [tuple(float(v[i]) for v in cases) for i in range(cases[0].size)]
+    n = len(scalar)
+    t_romberg = _per_call(lambda: romberg_work(*cases, rtol=matched["rtol"], min_levels=1), n, repeats)
+    t_approx = _per_call(
+        lambda: [longd_approx_intrinsic(d, p, q, a, 1.0) for d, p, q, a in scalar], n, repeats
+    )
+    approx_evaluations = t_approx_vec / t_point
+    return {
+        "approx_evaluations": approx_evaluations,
+        "evaluation_ratio": matched["mean_evaluations"] / approx_evaluations,
+        "romberg_us": 1e6 * t_romberg,
+        "approx_us": 1e6 * t_approx,
+        "time_ratio_scalar": t_romberg / t_approx,
+    }

@@ -527,7 +527,11 @@ PAPER_CLAIMS: Mapping[str, PaperClaim] = MappingProxyType(
             where="Approximate computation of cost function",
             criteria=(
                 Criterion(
-                    "Romberg at [2]'s max error over [2], integrand evaluations", ">", 1.0, fmt="{:.1f}"
+                    "Romberg at [2]'s max error over [2], in integrand evaluations ([2]'s cost timed)",
+                    ">",
+                    1.0,
+                    fmt="{:.1f}",
+                    varies=True,
                 ),
                 Criterion(
                     "Romberg at [2]'s max error over [2], time of scalar calls",
@@ -538,14 +542,18 @@ PAPER_CLAIMS: Mapping[str, PaperClaim] = MappingProxyType(
                 ),
             ),
             why="the direction of the claim: [2] is cheaper than Romberg at the same error, in work "
-            "(evaluations, deterministic) and in time",
+            "(integrand evaluations, [2]'s own cost in evaluations timed) and in time",
         ),
         "formula2-saving-size": PaperClaim(
             words="2/5 to 1/3 of exact computational cost [...] Though not too large a difference",
             where="Approximate computation of cost function",
             criteria=(
                 Criterion(
-                    "Romberg at [2]'s max error over [2], integrand evaluations", "<=", 3.0, fmt="{:.1f}"
+                    "Romberg at [2]'s max error over [2], in integrand evaluations ([2]'s cost timed)",
+                    "<=",
+                    3.0,
+                    fmt="{:.1f}",
+                    varies=True,
                 ),
                 Criterion(
                     "Romberg at [2]'s max error over [2], time of scalar calls",
