@@ -129,3 +129,23 @@ def test_best_known_plans_read_the_stored_ompl_runs_and_bracket_the_optimum(tmp_
         optimum_interval(sc, known.iloc[0:0])
     with pytest.raises(ValueError, match="csv_path"):
         best_known_plans(sc, tmp_path / "none.csv", heuristics=())
+
+
+def test_search_cpu_seconds_times_every_search_on_every_case():
+    import segplan
+    from segplan.studies.searches import search_cpu_seconds
+
+    cases = [({"floor": name}, segplan.load_scenario(name)) for name in ("single_obstacle", "empty_room")]
+    t = search_cpu_seconds(cases, {"a": {"heuristic": "a"}, "b": {"heuristic": "b"}}, repeats=2)
+    assert list(t.columns) == ["floor", "search", "cpu seconds"]
+    assert list(zip(t["floor"], t["search"], strict=True)) == [
+        ("single_obstacle", "a"),
+        ("single_obstacle", "b"),
+        ("empty_room", "a"),
+        ("empty_room", "b"),
+    ]
+    assert (t["cpu seconds"] > 0).all() and (t["cpu seconds"] < 60).all()
+    with pytest.raises(ValueError, match="repeats"):
+        search_cpu_seconds(cases, {"a": {}}, repeats=0)
+    with pytest.raises(ValueError, match="cases"):
+        search_cpu_seconds([("x", None)], {"a": {}})

@@ -572,19 +572,20 @@ PAPER_CLAIMS: Mapping[str, PaperClaim] = MappingProxyType(
             "of nodes are expanded",
             where="Evaluation function in the graph-search, choice a)",
             criteria=(
+                Criterion("(a)'s total expansions over (b)'s", "<", 1.0, fmt="{:.2f}"),
                 Criterion(
-                    "(a)'s total expansions over (b)'s, the larger of the families", "<", 1.0, fmt="{:.2f}"
-                ),
-                Criterion(
-                    "(a)'s total search time over (b)'s, the larger of the families",
+                    "(a)'s total CPU time over (b)'s (best of 3 runs per search)",
                     "<",
-                    1.0,
+                    0.90,
                     fmt="{:.2f}",
                     varies=True,
                 ),
             ),
             why="'quicker' is a time, 'a limited number of nodes are expanded' its reason: both are "
-            "judged, each against b's (below 1: fewer, quicker); no 'partly' band",
+            "judged against b's, expansions (deterministic) below 1, CPU time below 0.90: the 10 % "
+            "is ours, so that a search is called quicker only by more than twice the few percent "
+            "by which repeated timings of the same searches differ on a shared machine (3 points "
+            "between runs of chapter 7's forward family); no 'partly' band",
         ),
     }
 )
