@@ -48,6 +48,8 @@ def test_the_rule_refuses_long_starved_runs_only():
         ex.FairnessRule(min_share=1.5)
     with pytest.raises(ValueError, match="retries"):
         ex.FairnessRule(retries=-1)
+    with pytest.raises(ValueError, match="backoff"):
+        ex.FairnessRule(backoff=-1.0)
 
 
 def test_runs_are_stored_as_they_finish_and_a_rerun_resumes(tmp_path):
@@ -95,7 +97,10 @@ def test_a_starved_run_is_refused_run_again_and_never_stored(tmp_path):
         share = 0.5 if attempts[job] == 1 else 1.0
         return {"seconds": 5.0, "cpu_seconds": 5.0 * share}
 
-    out = ex.run_jobs(starved_once, ["a", "b"], journal=journal, cap=1)
+    rule = ex.FairnessRule(backoff=0.05)
+    t0 = time.monotonic()
+    out = ex.run_jobs(starved_once, ["a", "b"], journal=journal, rule=rule, cap=1)
+    assert time.monotonic() - t0 >= 0.05  # each retry waited its back-off
     assert attempts == {"a": 2, "b": 2}
     assert all(r["attempts"] == 2 and r["cpu_share"] == 1.0 for r in out.values())
     stored = [json.loads(line)["record"] for line in journal.read_text().splitlines()]
@@ -104,7 +109,8 @@ def test_a_starved_run_is_refused_run_again_and_never_stored(tmp_path):
 
 def test_a_run_that_stays_starved_stops_the_study_loudly(tmp_path):
     journal = tmp_path / "runs.jsonl"
-    rule = ex.FairnessRule(retries=2)
+    rule = ex.FairnessRule(retries=2, backoff=0.01)
+    assert [rule.wait(a) for a in (1, 2, 3)] == [0.01, 0.02, 0.04]
 
     def run(job):
         return {"seconds": 1.0, "cpu_seconds": 0.5 if job == "starved" else 1.0}

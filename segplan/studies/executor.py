@@ -18,7 +18,8 @@ through :func:`run_jobs`, which
   at least ``min_seconds`` (0.5 s: it used a budget long enough for the share to be
   measured; BIT* stops sooner when it proves a path optimal) and whose CPU share
   ``cpu_seconds / seconds`` is below ``min_share`` (0.9) is *refused*: never stored, run
-  again, at most ``retries`` times, then :class:`UnfairRunError` stops the study loudly;
+  again after a back-off (10, 20, 40 s; other runs go on), at most ``retries`` times, then
+  :class:`UnfairRunError` stops the study loudly;
 - **stores each accepted run as it finishes** in a :class:`Journal` (JSON lines), so an
   interrupted study resumes where it stopped: a run already in the journal that the rule
   accepts is not run again;
@@ -38,6 +39,7 @@ import concurrent.futures as cf
 import json
 import math
 import os
+import time
 from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -85,11 +87,15 @@ class FairnessRule:
     retries : int
         A refused run is run again at most this many times; then :func:`run_jobs` raises
         :class:`UnfairRunError`.
+    backoff : float
+        Seconds a refused run waits before its first retry, doubled at each further one
+        (10, 20, 40 s): time for a passing load to pass; other runs go on meanwhile.
     """
 
     min_share: float = 0.9
     min_seconds: float = 0.5
     retries: int = 3
+    backoff: float = 10.0
 
     def __post_init__(self):
         if not (isinstance(self.min_share, int | float) and 0.0 < self.min_share <= 1.0):
@@ -98,6 +104,12 @@ class FairnessRule:
             raise ValueError(f"min_seconds must be >= 0, got {self.min_seconds!r}")
         if isinstance(self.retries, bool) or not isinstance(self.retries, int) or self.retries < 0:
             raise ValueError(f"retries must be an integer >= 0, got {self.retries!r}")
+        if not (isinstance(self.backoff, int | float) and self.backoff >= 0.0):
+            raise ValueError(f"backoff must be >= 0 seconds, got {self.backoff!r}")
+
+    def wait(self, attempt: int) -> float:
+        """Seconds to wait before running again a run refused at its ``attempt``-th attempt."""
+        return self.backoff * 2.0 ** (attempt - 1)
 
     def refuses(self, record: dict) -> bool:
         """Does the rule refuse this run (long enough to judge, and starved or unmeasured)?"""
@@ -111,8 +123,8 @@ class FairnessRule:
         """The rule in words, as the provenance stores it."""
         return (
             f"a run of at least {self.min_seconds:g} s wall time whose CPU share (cpu_seconds / seconds) "
-            f"is below {self.min_share:g} is refused and run again (at most {self.retries} times, "
-            "then the study stops); refused runs are never stored"
+            f"is below {self.min_share:g} is refused and run again (at most {self.retries} times, after "
+            f"{self.backoff:g} s, doubled each time; then the study stops); refused runs are never stored"
         )
 
     def provenance(self) -> dict:
@@ -258,23 +270,34 @@ def run_jobs(
         slots = max(1, sum(client.nthreads().values()))
     attempts: dict[str, int] = {}
     queue = list(reversed(todo))  # pop() takes the first job
+    waiting: list[tuple[float, str, object]] = []  # refused runs: (time they may start again, key, job)
     running: dict[cf.Future, tuple[str, object]] = {}
     try:
         with progress(total=len(todo), desc=desc) as bar:
-            while queue or running:
+            while queue or running or waiting:
+                now = time.monotonic()
+                queue += [(k, j) for t, k, j in waiting if t <= now]  # due retries start next
+                waiting = [w for w in waiting if w[0] > now]
                 while queue and len(running) < slots:
                     k, j = queue.pop()
                     attempts[k] = attempts.get(k, 0) + 1
                     running[pool.submit(fn, j)] = (k, j)
-                finished, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
+                due = min((t for t, _, _ in waiting), default=None)
+                if not running:
+                    time.sleep(max(0.0, due - time.monotonic()))
+                    continue
+                timeout = None if due is None else max(0.0, due - time.monotonic())
+                finished, _ = cf.wait(running, timeout=timeout, return_when=cf.FIRST_COMPLETED)
                 for fut in finished:
                     k, j = running.pop(fut)
                     record = dict(fut.result())
                     record.update(cpu_share=cpu_share(record), attempts=attempts[k])
                     if rule.refuses(record):
+                        load = (record.get(f"load_{w}", math.nan) for w in ("before", "after"))
                         say(
                             f"refused {k}: CPU share {record['cpu_share']:.2f} < {rule.min_share:g} "
-                            f"over {float(record['seconds']):.2f} s (attempt {attempts[k]})"
+                            f"over {float(record['seconds']):.2f} s (attempt {attempts[k]}, load "
+                            "{:.1f} -> {:.1f})".format(*load)
                         )
                         if attempts[k] > rule.retries:
                             raise UnfairRunError(
@@ -283,7 +306,7 @@ def run_jobs(
                                 "time-budgeted runs: free it (or lower --jobs) and run again, "
                                 "the accepted runs are kept"
                             )
-                        queue.append((k, j))  # next to start
+                        waiting.append((time.monotonic() + rule.wait(attempts[k]), k, j))
                         continue
                     done[k] = record
                     if journal is not None:
