@@ -34,3 +34,27 @@ def test_unbounded_floor_is_refused():
     floor = segplan.make_scenario(segplan.Robot(1.0), (0, 0, 0), (5, 0, 0))
     with pytest.raises(ValueError, match="bounds"):
         free_space_comparison(floor)
+
+
+def test_wasted_space_in_an_empty_room_is_the_walls_against_the_caps():
+    import math
+
+    import numpy as np
+
+    from segplan.studies.model import wasted_space
+
+    # empty room: a pose is lost only where a cap crosses a wall while the rectangle does not
+    floor = segplan.make_scenario(segplan.Robot(1.0, 0.25), (1, 1, 0), (8, 4, 0), bounds=(0, 0, 10, 5))
+    ws = wasted_space(floor, n=4000, seed=1)
+    assert 0 < ws["sacrificed"] < 0.2
+    assert ws["rear"] + ws["front"] == pytest.approx(1.0)
+    assert 0.3 < ws["rear"] < 0.7  # the two caps are alike when poses are drawn in any heading
+    assert ws["front_passed_anyway"] == pytest.approx(1.0)  # the front cap is swept by moving forward by w
+    assert ws["forward_relevant"] == pytest.approx(ws["sacrificed"] * ws["rear"])
+    assert ws["model_area_wasted"] == pytest.approx(math.pi * 0.25**2 / (2 * 0.25 + math.pi * 0.25**2))
+    assert ws == wasted_space(floor, n=4000, seed=1)  # deterministic
+    with pytest.raises(ValueError, match="half_width"):
+        wasted_space(segplan.make_scenario(segplan.Robot(1.0), (1, 1, 0), (8, 4, 0), bounds=(0, 0, 10, 5)))
+    with pytest.raises(ValueError, match="n must"):
+        wasted_space(floor, n=0)
+    assert np.isfinite(ws["sacrificed"])
