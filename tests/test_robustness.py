@@ -172,6 +172,7 @@ def test_the_reference_is_simplified_for_the_refined_planner_raw_for_the_paper()
     simple = rb.compare(seg, ompl).iloc[0]
     raw = rb.compare(seg, ompl, simplified=False).iloc[0]
     assert simple["ompl_front"] == 1.6 and simple["ompl_planner"] == "BITstar +simplify"
+    assert simple["ompl_id"] == "f0|BITstar +simplify|5|1" and raw["ompl_id"] == "f0|BITstar|5|1"
     assert raw["ompl_front"] == 2.0 and raw["ompl_planner"] == "BITstar"
     assert simple["ratio"] == pytest.approx(1.0 / 1.6) and raw["ratio"] == pytest.approx(0.5)
     assert (simple["ompl_raw_front"], simple["ompl_simplified_front"]) == (2.0, 1.6)
@@ -215,30 +216,30 @@ def test_verdicts_follow_the_criteria():
     seg, ompl = _tables([0.9, 1.0, 1.1], [0.01, 0.02, 0.03])
     v = rb.verdicts(rb.compare(seg, ompl)).set_index("target")
     assert set(v.index) == set(rb.TARGETS)
-    assert v.loc["success, any headings", "verdict"] == "reproduced"
-    assert v.loc["success, natural headings", "verdict"] == "not reproduced"  # nothing measured
+    assert v.loc["success, any headings", "verdict"] == "met"
+    assert v.loc["success, natural headings", "verdict"] == "not met"  # nothing measured
     assert v.loc["success, natural headings", "measured"] == "no OMPL results"
     assert v.loc["plan time, median", "value"] == pytest.approx(20.0)
-    assert v.loc["plan time, median", "verdict"] == "reproduced" and v.loc["plan time, median", "timed"]
+    assert v.loc["plan time, median", "verdict"] == "met" and v.loc["plan time, median", "timed"]
     assert v.loc["front-wheel length / BIT* 5 s, worst", "value"] == pytest.approx(1.1)
-    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "reproduced"
+    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "met"
     assert not v.loc["front-wheel length / BIT* 5 s, median", "timed"]
     assert v.loc["invalid plans", "criterion"] == rb.TARGETS["invalid plans"].text()
     seg, ompl = _tables([1.01, 1.2, 1.3], [0.1, 0.2, 0.4], valid=[True, True, False])
     v = rb.verdicts(rb.compare(seg, ompl)).set_index("target")
-    assert v.loc["success, any headings", "verdict"] == "not reproduced"  # 2 of 3
+    assert v.loc["success, any headings", "verdict"] == "not met"  # 2 of 3
     assert v.loc["success, any headings", "value"] == pytest.approx(2 / 3)
-    assert v.loc["invalid plans", "verdict"] == "not reproduced"
-    assert v.loc["plan time, median", "verdict"] == "not reproduced"
+    assert v.loc["invalid plans", "verdict"] == "not met"
+    assert v.loc["plan time, median", "verdict"] == "not met"
     assert v.loc["front-wheel length / BIT* 5 s, worst", "value"] == pytest.approx(
         1.2
     )  # the invalid one has none
-    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "not reproduced"
-    claims = rb.claims(rb.verdicts(rb.compare(seg, ompl)), {"invalid plans": "f2"})
-    assert list(claims.columns) == ["claim", "paper", "ours", "criterion", "verdict", "why"]
-    assert len(claims) == len(rb.TARGETS)
-    row = claims[claims["claim"] == "beyond the paper: invalid plans"].iloc[0]
-    assert row["why"] == "f2" and row["verdict"] == "not reproduced" and row["ours"] == "1 of 3 plans"
+    assert v.loc["front-wheel length / BIT* 5 s, median", "verdict"] == "not met"
+    targets = rb.targets(rb.verdicts(rb.compare(seg, ompl)), {"invalid plans": "f2"})
+    assert list(targets.columns) == ["target", "ours", "criterion", "verdict", "why"]
+    assert len(targets) == len(rb.TARGETS)
+    row = targets[targets["target"] == "invalid plans"].iloc[0]
+    assert row["why"] == "f2" and row["verdict"] == "not met" and row["ours"] == "1 of 3 plans"
 
 
 def test_compare_refuses_results_of_other_floors():

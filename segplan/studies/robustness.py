@@ -16,7 +16,7 @@ refines), the raw paths for the paper's search as found.
 
 **segplan** (:func:`solve_segplan`, computed when asked): :func:`segplan.plan_scenario` per
 floor; :func:`compare` adds the ratio to OMPL's length, :func:`verdicts` judges each target
-of the planner (:data:`TARGETS`) with :func:`segplan.studies.verdicts.judge`.
+of the planner (:data:`TARGETS`, ours: met or not met) with :func:`segplan.studies.verdicts.meet`.
 
 **Deterministic results, varying times.** The study bounds the default planner by
 ``max_expansions=`` :data:`MAX_EXPANSIONS` (the same on every machine) and passes
@@ -54,7 +54,7 @@ from . import floors as fl
 from . import ompl_runner as om
 from . import peers
 from .executor import FAIRNESS, FairnessRule, Journal, run_jobs
-from .verdicts import Criterion, claims_table, judge
+from .verdicts import Target, meet, targets_table
 
 __all__ = [
     "BUDGETS",
@@ -67,7 +67,6 @@ __all__ = [
     "SUBSET_RANDOM",
     "TARGETS",
     "TIME_LIMIT",
-    "claims",
     "compare",
     "floor_groups",
     "job_id",
@@ -85,6 +84,7 @@ __all__ = [
     "solve_segplan",
     "subset",
     "sweep_floors",
+    "targets",
     "variant_label",
     "verdicts",
     "warm_up",
@@ -139,30 +139,29 @@ SEGPLAN_COLUMNS = tuple(
     ).split()
 )
 
-#: Issue 12's targets: each a criterion, judged by :func:`verdicts` (``varies``: a time).
+#: Issue 12's targets, ours (not the paper's): each a :class:`~segplan.studies.verdicts.Target`,
+#: met or not met, judged by :func:`verdicts` (``varies``: a time).
 _SHARE = "share of the floors OMPL solves that segplan solves validly"
 _RATIO = "front-wheel length over BIT*'s at 5 s after OMPL's PathSimplifier (random floors both solve)"
 TARGETS = {
-    "success, any headings": Criterion(f"{_SHARE}, any headings", ">=", 0.99, fmt="{:.1%}"),
-    "success, natural headings": Criterion(f"{_SHARE}, natural headings", ">=", 0.99, fmt="{:.1%}"),
-    "invalid plans": Criterion("plans the dense oracle rejects, every floor", "==", 0, fmt="{:.0f}"),
-    "plan time, median": Criterion("median plan time, random floors [ms]", "<=", 50.0, varies=True),
-    "plan time, 95th percentile": Criterion(
-        "95th pct. plan time, random floors [ms]", "<=", 300.0, varies=True
-    ),
-    "front-wheel length / BIT* 5 s, median": Criterion(f"median {_RATIO}", "<=", 1.00, fmt="{:.3f}"),
-    "front-wheel length / BIT* 5 s, worst": Criterion(f"largest {_RATIO}", "<=", 1.15, fmt="{:.3f}"),
-    "turn_around / best OMPL at 5 s": Criterion(
+    "success, any headings": Target(f"{_SHARE}, any headings", ">=", 0.99, fmt="{:.1%}"),
+    "success, natural headings": Target(f"{_SHARE}, natural headings", ">=", 0.99, fmt="{:.1%}"),
+    "invalid plans": Target("plans the dense oracle rejects, every floor", "==", 0, fmt="{:.0f}"),
+    "plan time, median": Target("median plan time, random floors [ms]", "<=", 50.0, varies=True),
+    "plan time, 95th percentile": Target("95th pct. plan time, random floors [ms]", "<=", 300.0, varies=True),
+    "front-wheel length / BIT* 5 s, median": Target(f"median {_RATIO}", "<=", 1.00, fmt="{:.3f}"),
+    "front-wheel length / BIT* 5 s, worst": Target(f"largest {_RATIO}", "<=", 1.15, fmt="{:.3f}"),
+    "turn_around / best OMPL at 5 s": Target(
         "front-wheel length on turn_around over the best simplified OMPL result at 5 s",
         "<=",
         1.05,
         fmt="{:.3f}",
     ),
-    "160 x 96 m, 512 obstacles: plan time median": Criterion(
+    "160 x 96 m, 512 obstacles: plan time median": Target(
         "median plan time across 160 x 96 m, 512 obstacles [s]", "<=", 1.0, varies=True
     ),
-    "enclosed goal: no plan": Criterion("plans returned for an enclosed goal", "==", 0, fmt="{:.0f}"),
-    "enclosed goal: time": Criterion("slowest NoPathError for an enclosed goal [s]", "<=", 1.0, varies=True),
+    "enclosed goal: no plan": Target("plans returned for an enclosed goal", "==", 0, fmt="{:.0f}"),
+    "enclosed goal: time": Target("slowest NoPathError for an enclosed goal [s]", "<=", 1.0, varies=True),
 }
 
 
@@ -283,6 +282,12 @@ def read_ompl_paths(path: str | Path = OMPL_PATHS) -> dict[str, np.ndarray]:
 def _simplified_id(run_id: str) -> str:
     floor, planner, rest = run_id.split("|", 2)
     return f"{floor}|{peers.ompl_method(planner, True)}|{rest}"
+
+
+def _path_id(run: pd.Series, simplified: bool) -> str:
+    """The key of a stored run's path (raw or simplified) in :func:`read_ompl_paths`."""
+    run_id = f"{run['floor']}|{run['planner']}|{float(run['budget']):g}|{int(run['seed'])}"
+    return _simplified_id(run_id) if simplified else run_id
 
 
 def _stored_records(out: Path, paths_out: Path, jobs: list[tuple], rule: FairnessRule) -> dict[str, dict]:
@@ -543,7 +548,7 @@ def reference(ompl: pd.DataFrame, simplified: bool = True) -> pd.DataFrame:
     """Per floor, from the stored OMPL runs: ``ompl_runs``, ``ompl_solved`` (some run found
     a valid path, raw or simplified: the feasibility oracle), ``ompl_front`` (the shortest
     valid front-wheel length at :data:`REFERENCE_BUDGET`, over planners and seeds),
-    ``ompl_planner``.
+    ``ompl_planner`` and ``ompl_id`` (the key of its path in :func:`read_ompl_paths`).
 
     Like with like: ``simplified=True`` (for a planner that refines its plans, the default
     planner) takes OMPL's paths after its ``PathSimplifier`` (the ``simplified_*`` columns;
@@ -551,7 +556,7 @@ def reference(ompl: pd.DataFrame, simplified: bool = True) -> pd.DataFrame:
     as found) the raw paths (also for runs stored before harness version 3, which have no
     simplified path). ``ompl_raw_front`` and ``ompl_simplified_front`` are both given.
     """
-    cols = ["floor", "ompl_key", "ompl_runs", "ompl_solved", "ompl_front", "ompl_planner"]
+    cols = ["floor", "ompl_key", "ompl_runs", "ompl_solved", "ompl_front", "ompl_planner", "ompl_id"]
     cols += ["ompl_raw_front", "ompl_simplified_front"]
     if ompl.empty:
         return pd.DataFrame(columns=cols)
@@ -583,6 +588,7 @@ def reference(ompl: pd.DataFrame, simplified: bool = True) -> pd.DataFrame:
                 "ompl_solved": bool((runs["valid"] | runs["simplified_valid"]).any()),
                 "ompl_front": best[side + "_front"],
                 "ompl_planner": "" if b is None else peers.ompl_method(str(b["planner"]), simplified),
+                "ompl_id": "" if b is None else _path_id(b, simplified),
                 "ompl_raw_front": best["raw_front"],
                 "ompl_simplified_front": best["simplified_front"],
             }
@@ -609,11 +615,11 @@ def compare(seg: pd.DataFrame, ompl: pd.DataFrame, simplified: bool = True) -> p
 
 def verdicts(table: pd.DataFrame) -> pd.DataFrame:
     """Each target of the planner (:data:`TARGETS`) judged on :func:`compare`'s table:
-    ``target``, ``criterion`` (its text), ``measured``, ``value``, ``verdict`` (the word of
-    :func:`segplan.studies.verdicts.judge`), ``judged`` (the
+    ``target``, ``criterion`` (its text), ``measured``, ``value``, ``verdict`` ("met" or
+    "not met", :func:`segplan.studies.verdicts.meet`), ``judged`` (the
     :class:`~segplan.studies.verdicts.Verdict`) and ``timed`` (the value is a time, so the
-    verdict may vary from run to run). Nothing measured (e.g. no OMPL result) is "not
-    reproduced", with the reason in ``measured``."""
+    verdict may vary from run to run). Nothing measured (e.g. no OMPL result) is "not met",
+    with the reason in ``measured``."""
     nan = math.nan
     rows = []  # (target, value, measured)
     random = table[table["group"].isin(fl.KINDS)]
@@ -648,20 +654,20 @@ def verdicts(table: pd.DataFrame) -> pd.DataFrame:
     rows.append(("enclosed goal: time", v, f"slowest {v:.2f} s"))
     out = pd.DataFrame(rows, columns=["target", "value", "measured"])
     out["criterion"] = [TARGETS[t].text() for t in out["target"]]
-    out["judged"] = [judge(v, TARGETS[t]) for t, v in zip(out["target"], out["value"], strict=True)]
+    out["judged"] = [meet(v, TARGETS[t]) for t, v in zip(out["target"], out["value"], strict=True)]
     out["verdict"] = [v.word for v in out["judged"]]
     out["timed"] = [TARGETS[t].varies for t in out["target"]]
     return out[["target", "criterion", "measured", "value", "verdict", "judged", "timed"]]
 
 
-def claims(verdict: pd.DataFrame, why: dict[str, str] | None = None) -> pd.DataFrame:
-    """The chapter's claims table (:func:`segplan.studies.verdicts.claims_table`), a row
-    per target of :func:`verdicts`, with ``why`` by target."""
+def targets(verdict: pd.DataFrame, why: dict[str, str] | None = None) -> pd.DataFrame:
+    """The chapter's table of our targets (:func:`segplan.studies.verdicts.targets_table`: met
+    or not met, apart from the paper's claims), a row per target of :func:`verdicts`, with
+    ``why`` by target."""
     why = dict(why or {})
-    return claims_table(
+    return targets_table(
         {
-            "claim": f"beyond the paper: {v['target']}",
-            "paper": "not in the paper (our target)",
+            "target": v["target"],
             "ours": v["measured"],
             "verdict": v["judged"],
             "why": why.get(v["target"], ""),
