@@ -298,3 +298,43 @@ def test_quick_run():
     ompl = ompl_runner.ompl_available()
     assert ("OMPL quick:" in out.stderr) == ompl
     assert ("skipping the OMPL side" in out.stderr) == (not ompl)
+
+
+def test_run_ompl_stores_fair_runs_and_resumes(tmp_path, monkeypatch):
+    """run_ompl through the executor, with fake runs: every run stored once (raw and simplified
+    paths at the reference budget), the journal removed, and a second call keeps the stored
+    runs (nothing run again) while a starved stored run would be."""
+    floors = [("any", fl.random_floor("any", i)) for i in range(2)]
+    jobs = [(g, sc, "BITstar", b, 1) for g, sc in floors for b in rb.BUDGETS]
+    calls = []
+
+    def fake_record(job, resolution):
+        group, sc, planner, budget, seed = job
+        calls.append(rb.job_id(job))
+        row = dict.fromkeys(rb.OMPL_COLUMNS, math.nan)
+        row.update(group=group, floor=sc.name, floor_key=fl.floor_key(sc), generator=fl.GENERATOR_VERSION)
+        row.update(planner=planner, budget=budget, seed=seed, status="Exact solution", solved=True)
+        row.update(valid=True, simplified_valid=True, seconds=budget, cpu_seconds=0.95 * budget, messages="")
+        row.update(front_length=10.0, simplified_front_length=9.0, load_before=0.1, load_after=0.2)
+        return {**row, "poses": [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], "simplified_poses": [[0.0, 0.0, 0.0]]}
+
+    monkeypatch.setattr(rb, "ompl_record", fake_record)
+    files = (tmp_path / "o.csv", tmp_path / "p.json.gz", tmp_path / "o.json")
+    t = rb.run_ompl(jobs, *files, workers=1)
+    assert sorted(calls) == sorted(rb.job_id(j) for j in jobs) and len(t) == len(jobs)
+    assert np.allclose(t["cpu_share"], 0.95) and (t["attempts"] == 1).all()
+    assert not rb.peers.journal_path(files[0]).exists()
+    paths = rb.read_ompl_paths(files[1])
+    assert sorted(paths) == sorted(
+        f"{sc.name}|{p}|{rb.REFERENCE_BUDGET:g}|1"
+        for _, sc in floors
+        for p in ("BITstar", "BITstar +simplify")
+    )
+    prov = json.loads(files[2].read_text())
+    last = prov["sessions"][-1]
+    assert last["fairness"]["min_share"] == 0.9 and last["runs_done"] == len(jobs)
+    calls.clear()
+    t2 = rb.run_ompl(jobs, *files, workers=1)
+    assert calls == [] and len(t2) == len(jobs)  # resumed: nothing run again
+    assert last["runs_kept"] == 0
+    assert json.loads(files[2].read_text())["sessions"][-1]["runs_kept"] == len(jobs)

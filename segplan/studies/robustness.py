@@ -338,7 +338,9 @@ def run_ompl(
     end ``out`` (one row per run, raw and simplified measures), ``paths_out`` (the paths,
     raw and simplified, at :data:`REFERENCE_BUDGET`) are rewritten and the journal removed;
     ``provenance`` gains a session (:func:`segplan.studies.ompl_runner.provenance` of
-    ``argv``, with the fairness rule, the runs done, the refusals and the load during them).
+    ``argv``, with the fairness rule, the runs done, the refusals and the load during them)
+    and drops the sessions of older harness versions, none of whose runs are kept. Each
+    stored run carries its own CPU share, load and attempts.
     """
     out, paths_out, provenance = Path(out), Path(paths_out), Path(provenance)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -387,6 +389,8 @@ def run_ompl(
     )
     if loads:
         session["load_average_1min"] = {"min": min(loads), "mean": statistics.fmean(loads), "max": max(loads)}
+    # the sessions whose runs can still be stored: this harness's (older runs were all run again)
+    record["sessions"] = [s for s in record["sessions"] if s.get("harness_version") == om.HARNESS_VERSION]
     record["sessions"].append(session)
     rows = [{c: r[c] for c in OMPL_COLUMNS} for r in records.values()]
     _replace(out, lambda tmp: pd.DataFrame(rows, columns=list(OMPL_COLUMNS)).to_csv(tmp, index=False))
