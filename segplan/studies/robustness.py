@@ -227,7 +227,11 @@ def ompl_jobs(groups: dict[str, list[Scenario]], budgets: Sequence[float] = BUDG
 def job_id(job: tuple) -> str:
     """``"floor|planner|budget|seed"``: a run's key in the stored files."""
     _, sc, p, b, s = job
-    return f"{sc.name}|{p}|{b:g}|{s}"
+    return _run_id(sc.name, p, b, s)
+
+
+def _run_id(floor: str, planner: str, budget: float, seed: int) -> str:
+    return f"{floor}|{planner}|{float(budget):g}|{int(seed)}"
 
 
 # -- OMPL side (stored) -------------------------------------------------------------------
@@ -286,7 +290,7 @@ def _simplified_id(run_id: str) -> str:
 
 def _path_id(run: pd.Series, simplified: bool) -> str:
     """The key of a stored run's path (raw or simplified) in :func:`read_ompl_paths`."""
-    run_id = f"{run['floor']}|{run['planner']}|{float(run['budget']):g}|{int(run['seed'])}"
+    run_id = _run_id(run["floor"], run["planner"], run["budget"], run["seed"])
     return _simplified_id(run_id) if simplified else run_id
 
 
@@ -297,10 +301,8 @@ def _stored_records(out: Path, paths_out: Path, jobs: list[tuple], rule: Fairnes
     measured on another floor."""
     have = read_ompl(out)
     want = {job_id(j): fl.floor_key(j[1]) for j in jobs}
-    ids = [
-        f"{f}|{p}|{b:g}|{s}"
-        for f, p, b, s in zip(have["floor"], have["planner"], have["budget"], have["seed"], strict=True)
-    ]
+    runs = zip(have["floor"], have["planner"], have["budget"], have["seed"], strict=True)
+    ids = [_run_id(*run) for run in runs]
     stale = [i for i, k in zip(ids, have["floor_key"], strict=True) if i in want and want[i] != k]
     if stale:
         raise RuntimeError(f"{len(stale)} stored runs were measured on other floors: delete {out} first")
