@@ -396,10 +396,9 @@ def improvement_criterion(where: str) -> Criterion:
     Raises
     ------
     ValueError
-        If ``where`` is not a non-empty string.
+        If ``where`` is not a non-empty string (:meth:`PaperClaim.at
+        <segplan.studies.verdicts.PaperClaim.at>` checks it).
     """
-    if not isinstance(where, str) or not where.strip():
-        raise ValueError(f"where must be a non-empty string, got {where!r}")
     (criterion,) = PAPER_CLAIMS["improves-on-distance"].at(where)
     return criterion
 
