@@ -576,16 +576,16 @@ PAPER_CLAIMS: Mapping[str, PaperClaim] = MappingProxyType(
                 Criterion(
                     "(a)'s total CPU time over (b)'s (best of 5 runs per world)",
                     "<",
-                    0.90,
+                    1.0,
                     fmt="{:.2f}",
                     varies=True,
                 ),
             ),
             why="'quicker' is a time, 'a limited number of nodes are expanded' its reason: both are "
-            "judged against b's, expansions (deterministic) below 1, CPU time below 0.90: the 10 % "
-            "is ours, so that a search is called quicker only by more than twice the few percent "
-            "by which repeated timings of the same searches differ on a shared machine (3 points "
-            "between runs of chapter 7's forward family); no 'partly' band",
+            "judged against b's, expansions (deterministic) below 1 and CPU time below 1, as the paper's "
+            "'quicker' says (no margin of ours). A timing varies between runs and machines: by about 3 "
+            "points between runs of chapter 7's forward family, best of 5; a ratio within that of 1 would "
+            "make the word flip, and the chapter says so beside its timing; no 'partly' band",
         ),
     }
 )
