@@ -18,13 +18,15 @@ Each check stands outside the search it judges:
 * **Every returned plan.** Its cost the sum of its unions' exact LONGD [1]; every union
   within the steering limit (curvature sampled densely) and free by a dense shapely oracle
   of the swept segment (quadrilaterals between consecutive segment positions).
-* **The search's bookkeeping.** No state expanded twice; a state's ``g`` lowered only.
+* **The search's bookkeeping.** No state expanded twice; a state's ``g`` lowered only; every
+  deferred repair in a real search takes the cheapest edge from an expanded state that the
+  certified test passes (every primitive of every heading tried, not the search's tables).
 
 The coarse guide (:data:`segplan.costtogo.GUIDE_AFTER`) is an estimate, not a bound, and the
 goal's approach tree adds edges this recorder does not rebuild: the optimality oracles turn
 both off (a monkeypatch of the test, not of the library). The mutation tests at the end show
 that the oracles fail when the search is broken (h' times 1.5, duplicate detection broken,
-a Dubins word missing).
+a Dubins word missing, the repair taking the first passing edge).
 """
 
 import heapq
@@ -488,3 +490,65 @@ def test_the_dense_oracle_sees_a_plan_through_an_obstacle():
     sc2 = make_scenario(sc.robot, sc.start, sc.goal, [*sc.obstacles, block], sc.bounds)
     assert dense_collides(plan, sc2) == [len(plan.unions) // 2]
     assert np.isclose(union_longd(u), longd_exact(u.p0, u.p1, u.alpha, sc.robot.L), rtol=1e-7)
+
+
+# -- the deferred repair in a real search ------------------------------------------------------
+def _cheapest_passing_edge(s, key, closed, failed):
+    """The cheapest edge into ``key`` from an expanded state, not refused before (``failed``,
+    ``banned``), that the certified test passes: ``(g, (prev, m))`` or None. Every primitive of
+    every heading is tried (not the search's table of edges into a heading)."""
+    best = None
+    for h0, steps in enumerate(s.step):
+        for m, (di, dj, h1) in enumerate(steps):
+            prev = (key[0] - di, key[1] - dj, h0)
+            if h1 != key[2] or prev not in closed or (prev, m) in failed or (prev, m) in s.banned:
+                continue
+            ng = dict.__getitem__(s.g, prev) + s.cost[h0][m]
+            if (best is None or ng < best[0]) and s.ws.union_free(s.union(prev, m)):
+                best = (ng, (prev, m))
+    return best
+
+
+def _judged_repairs(monkeypatch, repair):
+    """Run ``repair`` (the search's, or a mutant) in the searches below, each call judged by
+    :func:`_cheapest_passing_edge`: returns ``[(expected, got)]``."""
+    judged = []
+
+    def judge(self, key, closed, failed, h, counter):
+        expected = _cheapest_passing_edge(self, key, closed, set(failed))
+        out = repair(self, key, closed, failed, h, counter)
+        got = (dict.__getitem__(self.g, key), self.parent[key]) if key in self.g else None
+        judged.append((expected, got))
+        return out
+
+    monkeypatch.setattr(lattice._LatticeSearch, "repair", judge)
+    return judged
+
+
+def _same(expected, got) -> bool:
+    """The repair gave the expected ``g`` (ties between edges of one cost may go either way),
+    or forgot the state exactly when no edge passes."""
+    if expected is None or got is None:
+        return expected is got
+    return got[0] == pytest.approx(expected[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["natural-003", "natural-005"])
+def test_every_repair_takes_the_cheapest_passing_edge(monkeypatch, name):
+    judged = _judged_repairs(monkeypatch, lattice._LatticeSearch.repair)
+    run(monkeypatch, name, 1.0)
+    assert len(judged) >= 10, "few repairs: the test tests little"
+    assert all(_same(e, g) for e, g in judged)
+
+
+def test_a_repair_taking_the_first_passing_edge_is_caught(monkeypatch):
+    # the mutant: the search's repair without its sort (the first passing edge, not the cheapest)
+    from segplan import deferred
+
+    src = textwrap.dedent(inspect.getsource(deferred.DeferredChecks.repair))
+    assert "    options.sort()\n" in src
+    ns = dict(vars(deferred))
+    exec(src.replace("    options.sort()\n", ""), ns)
+    judged = _judged_repairs(monkeypatch, ns["repair"])
+    run(monkeypatch, "any-009", 1.0)  # 4 of its 86 repairs then take a dearer edge
+    assert not all(_same(e, g) for e, g in judged)
