@@ -416,6 +416,8 @@ def test_longd_of_a_union_within_the_steering_limit_is_at_least_its_dubins_lengt
     from segplan.union import Union
 
     L, R = 1.0, 1.0  # 45 deg
+    if abs(phi0) < 1e-6 and abs(phi1) < 1e-6:
+        return  # a straight union: dubins_length's known 2 pi R error there is the strict xfail above
     lo = -0.5 * math.pi - min(phi0, phi1, 0.0)
     hi = 0.5 * math.pi - max(phi0, phi1, 0.0)
     if not hi - lo > 0.02:
