@@ -18,10 +18,29 @@ import numpy as np
 __all__ = ["dubins_length", "dubins_length_scalar"]
 
 TWO_PI = 2.0 * math.pi
+#: Rounding allowance (radians, and squared units of ``R`` for a straight part): an arc angle
+#: within ``ZERO`` below a full turn is a zero arc that rounding pushed below 0 and the
+#: wrap then sent to ``2 pi``; a squared straight length within ``ZERO`` below 0 is a zero
+#: straight part. Without it an end pose exactly on a turning circle of the start, some
+#: straight segments and some identical poses got ``2 pi R`` too much (found against OMPL's
+#: Dubins space by ``tests/test_lattice_oracles.py``). A shorter estimate stays admissible.
+ZERO = 1e-9
+#: A straight part of LSL or RSR shorter than ``SHORT`` (units of ``R``) leaves the direction
+#: between the two arcs undefined (``atan2`` of two near-zero numbers), so the two arcs are
+#: also taken as one, ``(b - a) mod 2 pi`` (LSL) or ``(a - b) mod 2 pi`` (RSR), plus the
+#: straight part: never more than the word's length (the two arcs add up to that turn, or
+#: to that turn plus a full turn), so still a lower bound.
+SHORT = 1e-6
 
 
 def _mod(a):
-    return np.mod(a, TWO_PI)
+    m = np.mod(a, TWO_PI)
+    return np.where(m > TWO_PI - ZERO, 0.0, m)
+
+
+def _mod_scalar(a: float) -> float:
+    m = a % TWO_PI
+    return 0.0 if m > TWO_PI - ZERO else m
 
 
 def dubins_length(x0, y0, theta0, x1, y1, theta1, R: float) -> np.ndarray:
@@ -54,21 +73,25 @@ def dubins_length(x0, y0, theta0, x1, y1, theta1, R: float) -> np.ndarray:
         # LSL
         p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
         t1 = np.arctan2(cb - ca, d + sa - sb)
-        lsl = np.where(p2 >= 0, _mod(t1 - a) + np.sqrt(np.maximum(p2, 0)) + _mod(b - t1), inf)
+        q = np.sqrt(np.maximum(p2, 0))
+        lsl = np.where(p2 >= -ZERO, _mod(t1 - a) + q + _mod(b - t1), inf)
+        lsl = np.where(q < SHORT, np.minimum(lsl, q + _mod(b - a)), lsl)  # one arc: t1 undefined
         # RSR
         p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
         t1 = np.arctan2(ca - cb, d - sa + sb)
-        rsr = np.where(p2 >= 0, _mod(a - t1) + np.sqrt(np.maximum(p2, 0)) + _mod(t1 - b), inf)
+        q = np.sqrt(np.maximum(p2, 0))
+        rsr = np.where(p2 >= -ZERO, _mod(a - t1) + q + _mod(t1 - b), inf)
+        rsr = np.where(q < SHORT, np.minimum(rsr, q + _mod(a - b)), rsr)
         # LSR
         p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
         p = np.sqrt(np.maximum(p2, 0))
         t2 = np.arctan2(-ca - cb, d + sa + sb) - np.arctan2(-2.0, p)
-        lsr = np.where(p2 >= 0, _mod(t2 - a) + p + _mod(t2 - b), inf)
+        lsr = np.where(p2 >= -ZERO, _mod(t2 - a) + p + _mod(t2 - b), inf)
         # RSL
         p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
         p = np.sqrt(np.maximum(p2, 0))
         t2 = np.arctan2(ca + cb, d - sa - sb) - np.arctan2(2.0, p)
-        rsl = np.where(p2 >= 0, _mod(a - t2) + p + _mod(b - t2), inf)
+        rsl = np.where(p2 >= -ZERO, _mod(a - t2) + p + _mod(b - t2), inf)
         # RLR
         c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
         p = _mod(TWO_PI - np.arccos(np.clip(c, -1, 1)))
@@ -90,38 +113,44 @@ def dubins_length_scalar(
     dx, dy = (x1 - x0) / R, (y1 - y0) / R
     d = math.hypot(dx, dy)
     th = math.atan2(dy, dx)
-    a = (theta0 - th) % TWO_PI
-    b = (theta1 - th) % TWO_PI
+    a = _mod_scalar(theta0 - th)
+    b = _mod_scalar(theta1 - th)
     sa, ca, sb, cb = math.sin(a), math.cos(a), math.sin(b), math.cos(b)
     cab = math.cos(a - b)
     dd = d * d
     best = math.inf
     p2 = 2.0 + dd - 2.0 * cab + 2.0 * d * (sa - sb)  # LSL
-    if p2 >= 0:
+    if p2 >= -ZERO:
         t1 = math.atan2(cb - ca, d + sa - sb)
-        best = min(best, (t1 - a) % TWO_PI + math.sqrt(p2) + (b - t1) % TWO_PI)
+        q = math.sqrt(max(p2, 0.0))
+        best = min(best, _mod_scalar(t1 - a) + q + _mod_scalar(b - t1))
+        if q < SHORT:  # one arc: t1 undefined
+            best = min(best, q + _mod_scalar(b - a))
     p2 = 2.0 + dd - 2.0 * cab + 2.0 * d * (sb - sa)  # RSR
-    if p2 >= 0:
+    if p2 >= -ZERO:
         t1 = math.atan2(ca - cb, d - sa + sb)
-        best = min(best, (a - t1) % TWO_PI + math.sqrt(p2) + (t1 - b) % TWO_PI)
+        q = math.sqrt(max(p2, 0.0))
+        best = min(best, _mod_scalar(a - t1) + q + _mod_scalar(t1 - b))
+        if q < SHORT:
+            best = min(best, q + _mod_scalar(a - b))
     p2 = -2.0 + dd + 2.0 * cab + 2.0 * d * (sa + sb)  # LSR
-    if p2 >= 0:
-        p = math.sqrt(p2)
+    if p2 >= -ZERO:
+        p = math.sqrt(max(p2, 0.0))
         t2 = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-        best = min(best, (t2 - a) % TWO_PI + p + (t2 - b) % TWO_PI)
+        best = min(best, _mod_scalar(t2 - a) + p + _mod_scalar(t2 - b))
     p2 = -2.0 + dd + 2.0 * cab - 2.0 * d * (sa + sb)  # RSL
-    if p2 >= 0:
-        p = math.sqrt(p2)
+    if p2 >= -ZERO:
+        p = math.sqrt(max(p2, 0.0))
         t2 = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-        best = min(best, (a - t2) % TWO_PI + p + (b - t2) % TWO_PI)
+        best = min(best, _mod_scalar(a - t2) + p + _mod_scalar(b - t2))
     c = (6.0 - dd + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0  # RLR
     if abs(c) <= 1.0:
-        p = (TWO_PI - math.acos(c)) % TWO_PI
-        t = (a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p) % TWO_PI
-        best = min(best, t + p + (a - b - t + p) % TWO_PI)
+        p = _mod_scalar(TWO_PI - math.acos(c))
+        t = _mod_scalar(a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
+        best = min(best, t + p + _mod_scalar(a - b - t + p))
     c = (6.0 - dd + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
     if abs(c) <= 1.0:
-        p = (TWO_PI - math.acos(c)) % TWO_PI
-        t = (-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p) % TWO_PI
-        best = min(best, t + p + (b - a - t + p) % TWO_PI)
+        p = _mod_scalar(TWO_PI - math.acos(c))
+        t = _mod_scalar(-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p)
+        best = min(best, t + p + _mod_scalar(b - a - t + p))
     return R * best
