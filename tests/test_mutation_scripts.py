@@ -63,3 +63,24 @@ def test_merge_replaces_and_adds_modules_with_their_provenance(tmp_path):
         "frame_exact",
     ]
     assert merged["meta"]["targets"]["frame_exact"] == ["tests/frame_exact.py"]
+
+
+def test_same_plans_compare_reports_every_difference():
+    same_plans = load_file(ROOT / "benchmarks" / "same_plans.py", "same_plans")
+    before = {
+        "a": ["plan", (2.0).hex(), [[(0.0).hex()] * 3]],
+        "b": ["fail", "exhausted"],
+        "c": ["fail", "time"],
+    }
+    assert same_plans.compare(before, dict(before)) == []
+    after = {**before, "a": ["plan", (2.02).hex(), before["a"][2]], "b": ["plan", (3.0).hex(), []]}
+    del after["c"]
+    lines = same_plans.compare(before, after)
+    assert lines[0] == "a: 2.000000 m -> 2.020000 m (+1.000%)"
+    assert (
+        lines[1].startswith("b: ['fail', 'exhausted'] -> ['plan'")
+        and lines[2] == "c: ['fail', 'time'] -> None"
+    )
+    # nodes alone differing is a difference too
+    moved = {**before, "a": ["plan", before["a"][1], [[(1.0).hex()] * 3]]}
+    assert same_plans.compare(before, moved) == ["a: 2.000000 m -> 2.000000 m (+0.000%)"]

@@ -1,0 +1,89 @@
+"""Record every plan of the default planner on a fixed floor set, bit for bit, and compare two records.
+
+For changes that must not change a single plan (issue 24's redesign, a bug fix such as
+dubins_length's): run it before the change with ``--out before.json``, after it with
+``--out after.json``, then ``--compare before.json after.json``. A plan is recorded as its
+front-wheel length and its nodes, every float by ``float.hex`` (exact, not rounded); a
+failure as its reason. The floors: chapter 9's 400 random floors (200 of each kind), its
+hard cases, and the robots probe's 80 floors (``benchmarks/robots.py``): 490 in all, about
+two minutes of CPU.
+
+    python benchmarks/same_plans.py --out /tmp/before.json
+    python benchmarks/same_plans.py --compare /tmp/before.json /tmp/after.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+import segplan
+from segplan.studies.floors import hard_cases, random_floors
+
+HERE = Path(__file__).resolve().parent
+
+
+def floors() -> list[tuple[str, segplan.Scenario]]:
+    """The fixed floor set, by name (module docstring)."""
+    spec = importlib.util.spec_from_file_location("robots", HERE / "robots.py")
+    robots = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(robots)
+    out = [(f"{kind}-{i}", sc) for kind in ("any", "natural") for i, sc in enumerate(random_floors(kind))]
+    out += list(hard_cases().items())
+    out += [(f"robot-{i}", sc) for i in range(1, 81) if (sc := robots.robot_floor(i)) is not None]
+    return out
+
+
+def record() -> dict[str, list]:
+    """Each floor's plan (``["plan", cost hex, nodes as hex]``) or failure (``["fail", reason]``)."""
+    out: dict[str, list] = {}
+    for name, sc in floors():
+        try:
+            p = segplan.plan_scenario(sc)
+        except segplan.NoPathError as err:
+            out[name] = ["fail", err.reason]
+        else:
+            out[name] = ["plan", float(p.cost).hex(), [[float(v).hex() for v in n] for n in p.nodes]]
+    return out
+
+
+def compare(before: dict, after: dict) -> list[str]:
+    """The floors whose record differs (with both lengths where both planned)."""
+    lines = []
+    for name in sorted(set(before) | set(after)):
+        a, b = before.get(name), after.get(name)
+        if a == b:
+            continue
+        if a and b and a[0] == b[0] == "plan":
+            x, y = float.fromhex(a[1]), float.fromhex(b[1])
+            lines.append(f"{name}: {x:.6f} m -> {y:.6f} m ({y / x - 1:+.3%})")
+        else:
+            lines.append(f"{name}: {a and a[:2]} -> {b and b[:2]}")
+    return lines
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path, help="write the record of this tree's plans (JSON)")
+    parser.add_argument(
+        "--compare", nargs=2, type=Path, metavar=("BEFORE", "AFTER"), help="compare two records"
+    )
+    args = parser.parse_args(argv)
+    if args.compare:
+        before, after = (json.loads(p.read_text()) for p in args.compare)
+        lines = compare(before, after)
+        print("\n".join(lines) or f"the same {len(before)} plans and failures, bit for bit")
+        return 1 if lines else 0
+    if not args.out:
+        parser.error("give --out FILE or --compare BEFORE AFTER")
+    data = record()
+    args.out.write_text(json.dumps(data) + "\n")
+    print(f"{len(data)} floors: {sum(v[0] == 'plan' for v in data.values())} plans; wrote {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
