@@ -45,7 +45,7 @@ REFINE_TESTS = ("tests/test_refine_oracles.py",)
 MUTATIONS = (
     Mutation(
         "h_b_zero",
-        "segplan/problem.py",
+        "segplan/planning/paper/problem.py",
         'if self.cost == "distance" or self.heuristic == "b" or d == 0.0 and pose.theta == goal.theta:\n'
         "            return d",
         'if self.heuristic == "b":\n'
@@ -57,7 +57,7 @@ MUTATIONS = (
     ),
     Mutation(
         "no_closed_set",
-        "segplan/search.py",
+        "segplan/planning/paper/search.py",
         "            closed.add(key)\n",
         "            pass\n",
         SEARCH_TESTS,
@@ -65,7 +65,7 @@ MUTATIONS = (
     ),
     Mutation(
         "f_is_h",
-        "segplan/search.py",
+        "segplan/planning/paper/search.py",
         'f = g + (0.0 if succ.kind == "goal" else self.problem.cost_to_go(succ.pose, depth))',
         'f = 0.0 if succ.kind == "goal" else self.problem.cost_to_go(succ.pose, depth)',
         SEARCH_TESTS,
@@ -73,7 +73,7 @@ MUTATIONS = (
     ),
     Mutation(
         "move_adds_length",
-        "segplan/refine.py",
+        "segplan/planning/refine.py",
         "if self.link(a, q) + self.link(q, b) < now - gain:",
         "if self.link(a, q) + self.link(q, b) > now - gain:",
         REFINE_TESTS,
@@ -81,7 +81,7 @@ MUTATIONS = (
     ),
     Mutation(
         "move_unchecked",
-        "segplan/refine.py",
+        "segplan/planning/refine.py",
         "if self.link(a, q) + self.link(q, b) < now - gain:",
         "if True:",
         REFINE_TESTS,
@@ -89,7 +89,7 @@ MUTATIONS = (
     ),
     Mutation(
         "no_never_longer_guard",
-        "segplan/refine.py",
+        "segplan/planning/refine.py",
         "if not cost < plan.cost:",
         "if False:",
         REFINE_TESTS,
@@ -97,7 +97,7 @@ MUTATIONS = (
     ),
     Mutation(
         "certain_failures_never",
-        "segplan/refine.py",
+        "segplan/planning/refine.py",
         "= True  # strictly inside every edge\n    return bad",
         "= True  # strictly inside every edge\n    return bad & False",
         REFINE_TESTS,
@@ -105,7 +105,7 @@ MUTATIONS = (
     ),
     Mutation(
         "certain_failures_walls_skipped",
-        "segplan/refine.py",
+        "segplan/planning/refine.py",
         "    if ws.bounds is not None:\n        xmin, ymin, xmax, ymax = ws.bounds",
         "    if False:\n        xmin, ymin, xmax, ymax = ws.bounds",
         REFINE_TESTS,
@@ -113,7 +113,7 @@ MUTATIONS = (
     ),
     Mutation(
         "front_fallback_free",
-        "segplan/collision.py",
+        "segplan/floor/collision.py",
         "            return float(cand[np.argmin((sw.front(cand) @ N.T - H).max(axis=1))])",
         "            return None",
         ("tests/test_collision_fallbacks.py",),
@@ -121,7 +121,7 @@ MUTATIONS = (
     ),
     Mutation(
         "wall_fallback_free",
-        "segplan/collision.py",
+        "segplan/floor/collision.py",
         "        if e <= tol or np.count_nonzero(live) > _FRONT_MAX_PIECES:\n            return True",
         "        if e <= tol or np.count_nonzero(live) > _FRONT_MAX_PIECES:\n            return False",
         ("tests/test_collision_fallbacks.py",),
@@ -129,7 +129,7 @@ MUTATIONS = (
     ),
     Mutation(
         "cubic_one_root",
-        "segplan/sweep.py",
+        "segplan/floor/sweep.py",
         "    r = np.linalg.eigvals(comp).real\n",
         "    r = np.linalg.eigvals(comp).real\n    r = np.repeat(r[:, :1], 3, axis=1)\n",
         (

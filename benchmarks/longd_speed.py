@@ -42,8 +42,8 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 import segplan  # noqa: E402
-from segplan.cost import longd_approx_intrinsic, longd_exact_intrinsic, longd_integrand  # noqa: E402
 from segplan.fit.formula2 import BOUND_MAX  # noqa: E402
+from segplan.model.cost import longd_approx_intrinsic, longd_exact_intrinsic, longd_integrand  # noqa: E402
 from segplan.studies.approx import sample_domain  # noqa: E402
 from segplan.studies.progress import progress  # noqa: E402
 from segplan.studies.romberg_cost import matched_cost_ratios, matched_cost_study  # noqa: E402

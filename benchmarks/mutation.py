@@ -15,7 +15,8 @@ their diffs: read them, and list the equivalent ones with the reason).
 
 Run, niced (the machine is shared)::
 
-    PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --modules search refine --sample 20
+    PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py \
+        --modules planning/paper/search planning/refine --sample 20
     PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --sample 40 --json mutation.json
 
 Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers.
@@ -52,37 +53,45 @@ ROOT = Path(__file__).resolve().parent.parent
 #: frame_exact (the exact optimal frame), so those are mutated too.
 TARGETS = {
     # the planner's search and refinement
-    "search": ["tests/test_search_oracles.py", "tests/test_search.py"],
-    "problem": ["tests/test_search_oracles.py", "tests/test_search.py"],
-    "expansion": ["tests/test_expansion.py", "tests/test_fast_paths.py", "tests/test_search_oracles.py"],
-    "links": [
+    "planning/paper/search": ["tests/test_search_oracles.py", "tests/test_search.py"],
+    "planning/paper/problem": ["tests/test_search_oracles.py", "tests/test_search.py"],
+    "planning/paper/expansion": [
+        "tests/test_expansion.py",
+        "tests/test_fast_paths.py",
+        "tests/test_search_oracles.py",
+    ],
+    "planning/links": [
         "tests/test_fast_paths.py",
         "tests/test_expansion.py",
         "tests/test_search_oracles.py",
         "tests/test_search.py",  # the link observer
     ],
-    "refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
+    "planning/refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
     # collision
-    "validity": [
+    "planning/validity": [
         "tests/test_expansion.py",
         "tests/test_fast_paths.py",
         "tests/test_refine_oracles.py",
         "tests/test_refine.py",
         "tests/test_search_oracles.py::test_collision_counters_pinned",  # the shortcuts' counters
     ],
-    "collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
-    "sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
-    "geometry": ["tests/test_geometry.py", "tests/test_collision.py", "tests/test_collision_fallbacks.py"],
+    "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
+    "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
+    "floor/geometry": [
+        "tests/test_geometry.py",
+        "tests/test_collision.py",
+        "tests/test_collision_fallbacks.py",
+    ],
     # the cost and the frame
-    "cost": [
+    "model/cost": [
         "tests/test_approx.py",
         "tests/test_cost_gauss.py",  # the refinement's Gauss-Legendre cost
         "tests/test_derivation.py",
         "tests/test_romberg.py",
         "tests/test_fast_paths.py",
     ],
-    "frame": ["tests/test_frame.py"],
-    "frame_exact": ["tests/test_frame.py"],
+    "model/frame": ["tests/test_frame.py"],
+    "model/frame_exact": ["tests/test_frame.py"],
 }
 
 RESULTS = ROOT / "benchmarks" / "results"

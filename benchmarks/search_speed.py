@@ -6,7 +6,7 @@ process, ``time.process_time``: less inflated by other processes than the wall-c
 median beside it, though not immune, since caches, SMT siblings and a virtual machine's
 stolen time are shared), the expansions, the generated nodes, the LONGD cost and the
 collision checks per second (distinct union-obstacle pairs decided by the bounding box, a
-certain hit or the full test of :func:`segplan.collision.collides`; ``exact/s`` counts
+certain hit or the full test of :func:`segplan.floor.collision.collides`; ``exact/s`` counts
 only the latter).
 
 Target: a plan on an industrial floor of about ten obstacles in under 50 ms
@@ -15,8 +15,8 @@ median on one core.
 One core: the script sets ``OMP_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` and
 ``MKL_NUM_THREADS`` to 1 (unless already set) before numpy loads. Off-line work is not
 timed: the fitted coefficients of the heuristic reference system
-(:func:`segplan.frame.heuristic_coefficients`) and the calibration of formula [2]
-(:func:`segplan.constants.load`) are read once per process, first, and
+(:func:`segplan.model.frame.heuristic_coefficients`) and the calibration of formula [2]
+(:func:`segplan.model.constants.load`) are read once per process, first, and
 their one-off cost is printed separately; each scenario and heuristic is then planned
 once untimed (it also caches ``d_s`` of heuristic (c), per scenario) before the timed
 runs. The machine's load average is printed with the numbers (CPU time is the robust
@@ -42,8 +42,8 @@ from pathlib import Path  # noqa: E402
 
 import segplan  # noqa: E402
 from segplan import NoPathError, plan_scenario, random_world  # noqa: E402
-from segplan.constants import load as load_constants  # noqa: E402
-from segplan.frame import heuristic_coefficients  # noqa: E402
+from segplan.model.constants import load as load_constants  # noqa: E402
+from segplan.model.frame import heuristic_coefficients  # noqa: E402
 from segplan.studies.progress import progress  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent

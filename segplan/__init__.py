@@ -15,19 +15,11 @@ README's diagram; enforced by the import-linter contract in ``pyproject.toml``):
     base      union, constants (the stored fits), romberg, pose, derivation, dubins
 """
 
-from .api import plan, plan_scenario
-from .collision import CollisionStats, collides, union_free, union_in_bounds
-from .cost import longd, longd_approx, longd_exact
-from .decompose import convex_pieces
-from .floors import random_world
-from .frame import optimal_alpha, optimal_alpha_intrinsic
-from .geometry import ConvexPolygon, pose_collides, pose_in_bounds
-from .metrics import PathMetrics, measure_path, measure_scenario_path, plan_poses
-from .path import NoPathError, Plan, Refinement
-from .pose import Pose
-from .refine import refine
-from .union import Union
-from .world import (
+from .floor.collision import CollisionStats, collides, union_free, union_in_bounds
+from .floor.decompose import convex_pieces
+from .floor.geometry import ConvexPolygon, pose_collides, pose_in_bounds
+from .floor.random_floors import random_world
+from .floor.scenario import (
     Robot,
     Scenario,
     ScenarioError,
@@ -36,6 +28,14 @@ from .world import (
     save_scenario,
     shipped_scenarios,
 )
+from .model.cost import longd, longd_approx, longd_exact
+from .model.frame import optimal_alpha, optimal_alpha_intrinsic
+from .model.pose import Pose
+from .model.union import Union
+from .planning.api import plan, plan_scenario
+from .planning.plan import NoPathError, Plan, Refinement
+from .planning.refine import refine
+from .viz.metrics import PathMetrics, measure_path, measure_scenario_path, plan_poses
 
 __version__ = "0.1.0"
 

@@ -4,7 +4,7 @@ Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario fil
 name of a shipped scenario (``segplan plan fig5_example1``).
 
 Plans a forward-only path of the oriented-segment robot (Campoy et al., 1989) on a
-scenario file (see :mod:`segplan.world` for the format), prints its cost (LONGD, the
+scenario file (see :mod:`segplan.floor.scenario` for the format), prints its cost (LONGD, the
 front-wheel path length), nodes, expansions and time, and optionally draws it. Errors
 (unreadable or invalid file, no path) print one clear message on stderr and exit with a
 non-zero status, without a traceback.
@@ -19,9 +19,9 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .api import plan_scenario
-from .path import NoPathError, Plan
-from .world import ScenarioError, load_scenario, shipped_scenarios
+from .floor.scenario import ScenarioError, load_scenario, shipped_scenarios
+from .planning.api import plan_scenario
+from .planning.plan import NoPathError, Plan
 
 __all__ = ["EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
 
@@ -184,7 +184,7 @@ def _draw(path: str, scenario, unions, title: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from . import plot
+    from .viz import plot
 
     fig, ax = plt.subplots(figsize=(10, 7))
     if scenario.bounds is not None:
@@ -206,7 +206,7 @@ def _animate(path: str, scenario, result: Plan, title: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    from .animate import animate_plan, save_gif
+    from .viz.animate import animate_plan, save_gif
 
     save_gif(animate_plan(result, scenario, title=title), path)
 

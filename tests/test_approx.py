@@ -11,16 +11,6 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 import segplan
-from segplan.cost import (
-    APPROX_DOMAIN,
-    BLOCK,
-    exact_values,
-    in_domain,
-    k_alpha,
-    longd_approx_intrinsic,
-    longd_exact_intrinsic,
-    longd_intrinsic,
-)
 from segplan.fit.formula2 import (
     BAND_LOWER,
     BOUND_MAX,
@@ -29,6 +19,16 @@ from segplan.fit.formula2 import (
     FRAME_CAP_DEG,
     calibration_grid,
     run_calibration,
+)
+from segplan.model.cost import (
+    APPROX_DOMAIN,
+    BLOCK,
+    exact_values,
+    in_domain,
+    k_alpha,
+    longd_approx_intrinsic,
+    longd_exact_intrinsic,
+    longd_intrinsic,
 )
 from segplan.studies.approx import (
     error_study,
@@ -189,7 +189,7 @@ def test_in_domain_scalar_and_vector_paths_agree():
 @given(cases(phi_max_deg=75.0, frame_cap_deg=80.0))
 def test_longd_is_exact_outside_the_domain(case):
     p0, p1, alpha, L = case
-    d, phi0, phi1 = (segplan.cost.checked_intrinsic(p0, p1, alpha, L)[i] for i in range(3))
+    d, phi0, phi1 = (segplan.model.cost.checked_intrinsic(p0, p1, alpha, L)[i] for i in range(3))
     assume(not in_domain(float(d), float(phi0), float(phi1), alpha, L))
     assert segplan.longd(p0, p1, alpha, L) == segplan.longd_exact(p0, p1, alpha, L)
 
@@ -221,8 +221,8 @@ def test_longd_invariant_under_rigid_motions(case, angle, tx, ty):
     q0, q1 = rigid(p0, angle, tx, ty), rigid(p1, angle, tx, ty)
     for fn in (segplan.longd_exact, segplan.longd_approx):
         assert fn(q0, q1, alpha, L) == pytest.approx(fn(p0, p1, alpha, L), rel=1e-9)
-    d0 = segplan.cost.checked_intrinsic(p0, p1, alpha, L)
-    d1 = segplan.cost.checked_intrinsic(q0, q1, alpha, L)
+    d0 = segplan.model.cost.checked_intrinsic(p0, p1, alpha, L)
+    d1 = segplan.model.cost.checked_intrinsic(q0, q1, alpha, L)
     assume(in_domain(*map(float, d0)) == in_domain(*map(float, d1)))
     assert segplan.longd(q0, q1, alpha, L) == pytest.approx(segplan.longd(p0, p1, alpha, L), rel=1e-9)
 
@@ -429,5 +429,5 @@ def test_planner_links_records_the_search_link_costs():
     )
     np.testing.assert_array_equal(df["in_domain"].to_numpy(), expected)
     # the observer only watches: the plan is the one plan_scenario returns
-    observed = segplan.api.plan_scenario_observed(sc, lambda u, c: None)
+    observed = segplan.planning.api.plan_scenario_observed(sc, lambda u, c: None)
     assert observed.cost == plan.cost and observed.nodes == plan.nodes

@@ -1,6 +1,6 @@
 """The clearance grid's bounds against an independent oracle: shapely's exact distances.
 
-:class:`segplan.clearance.ClearanceGrid` promises, for every point of a cell that is not
+:class:`segplan.planning.lattice.clearance.ClearanceGrid` promises, for every point of a cell that is not
 occupied, a distance to the enlarged obstacles and walls of at least ``lower`` of its cell,
 and for a blocked cell, that the whole square lies inside an obstacle or beyond a wall.
 """
@@ -12,16 +12,16 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from segplan.clearance import ClearanceGrid
-from segplan.floors import random_convex_polygon
-from segplan.geometry import ConvexPolygon
+from segplan.floor.geometry import ConvexPolygon
+from segplan.floor.random_floors import random_convex_polygon
+from segplan.planning.lattice.clearance import ClearanceGrid
 
 ROOM = (0.0, 0.0, 6.0, 4.0)
 CELL = 0.0625
 
 
 def _polygon(seed, cx, cy, r):
-    """:func:`segplan.floors.random_convex_polygon` (3-8 vertices, any rotation and aspect)."""
+    """:func:`segplan.floor.random_floors.random_convex_polygon` (3-8 vertices, any rotation and aspect)."""
     return ConvexPolygon(random_convex_polygon(np.random.default_rng(seed), (cx, cy), r, 8))
 
 

@@ -19,8 +19,8 @@ import pytest
 import segplan
 import segplan.cli as cli
 from segplan.cli import EXIT_BAD_INPUT, EXIT_NO_PATH, build_parser, main
-from segplan.metrics import measure_scenario_path, plan_poses
-from segplan.world import load_scenario, with_clearance
+from segplan.floor.scenario import load_scenario, with_clearance
+from segplan.viz.metrics import measure_scenario_path, plan_poses
 
 #: Each argument of ``segplan plan`` (argparse ``dest``) and the test that shows it acts.
 OPTION_TESTS = {

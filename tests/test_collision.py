@@ -20,10 +20,10 @@ from hypothesis import strategies as st
 
 import segplan
 from segplan import Union
-from segplan import collision as col
-from segplan import geometry as geo
-from segplan import sweep as swp
-from segplan.pose import alpha_interval
+from segplan.floor import collision as col
+from segplan.floor import geometry as geo
+from segplan.floor import sweep as swp
+from segplan.model.pose import alpha_interval
 
 N_DENSE = 2001
 
@@ -568,7 +568,7 @@ def test_collides_never_misses_hypothesis(L, ratio, phi0, phi1, frac, x_frac, t,
 def test_quadratic_points_against_numpy_roots():
     """``sweep.quadratic_points``: the real roots (numpy's companion-matrix roots as the
     oracle), the vertex twice for a complex pair, the linear root when ``a2`` vanishes."""
-    from segplan.sweep import quadratic_points
+    from segplan.floor.sweep import quadratic_points
 
     rng = np.random.default_rng(2)
     a2, a1, a0 = rng.normal(size=(3, 400)) * 10.0 ** rng.uniform(-3, 3, (3, 400))

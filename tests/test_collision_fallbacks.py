@@ -24,8 +24,8 @@ import numpy as np
 import shapely
 from test_collision import N_DENSE, dense_collides, ngon, random_union, segments_at
 
-from segplan import collision as col
 from segplan import union_in_bounds
+from segplan.floor import collision as col
 
 
 # -- the reach into internals ------------------------------------------------------------------

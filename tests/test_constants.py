@@ -17,8 +17,6 @@ import numpy as np
 import pytest
 
 import segplan
-from segplan import constants
-from segplan.cost import APPROX_DOMAIN, K_COEF, S2_CAP, k_alpha, longd_approx_intrinsic
 from segplan.fit import store
 from segplan.fit.store import (
     FRAME_ATOL,
@@ -30,8 +28,10 @@ from segplan.fit.store import (
     frame_difference,
     main,
 )
-from segplan.frame import heuristic_alpha, heuristic_coefficients
-from segplan.pose import intrinsic
+from segplan.model import constants
+from segplan.model.cost import APPROX_DOMAIN, K_COEF, S2_CAP, k_alpha, longd_approx_intrinsic
+from segplan.model.frame import heuristic_alpha, heuristic_coefficients
+from segplan.model.pose import intrinsic
 
 DEG = math.pi / 180.0
 

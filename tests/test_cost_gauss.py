@@ -1,6 +1,6 @@
-"""The refinement's link cost: formula [1] by a fixed Gauss-Legendre rule (segplan.cost).
+"""The refinement's link cost: formula [1] by a fixed Gauss-Legendre rule (segplan.model.cost).
 
-:func:`segplan.cost.longd_gauss_intrinsic` is the cheap quadrature of [1] that the refinement
+:func:`segplan.model.cost.longd_gauss_intrinsic` is the cheap quadrature of [1] that the refinement
 compares trial links with. Two oracles, neither of which uses the package's cubic or its
 integrand:
 
@@ -23,10 +23,10 @@ from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from segplan.cost import longd_gauss_intrinsic
-from segplan.frame import heuristic_alpha
-from segplan.pose import Pose
-from segplan.union import Union
+from segplan.model.cost import longd_gauss_intrinsic
+from segplan.model.frame import heuristic_alpha
+from segplan.model.pose import Pose
+from segplan.model.union import Union
 
 #: Relative error bound within the steering limit, d/L in [0.5, 20], headings to +-80 deg.
 #: The docstring of longd_gauss_intrinsic says 2.5e-5 (worst of 9,800 random unions); the

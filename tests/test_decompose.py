@@ -1,4 +1,4 @@
-"""Any simple polygon as obstacles (issue 14 item 5): segplan.decompose, shapely as the oracle."""
+"""Any simple polygon as obstacles (issue 14 item 5): segplan.floor.decompose, shapely as the oracle."""
 
 import math
 
@@ -8,8 +8,8 @@ import shapely
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from segplan.decompose import as_outlines, convex_pieces, decompose
-from segplan.geometry import check_convex_polygon
+from segplan.floor.decompose import as_outlines, convex_pieces, decompose
+from segplan.floor.geometry import check_convex_polygon
 
 L_SHAPE = [[0, 0], [4, 0], [4, 1], [1, 1], [1, 3], [0, 3]]
 U_SHAPE = [[0, 0], [3, 0], [3, 3], [2, 3], [2, 1], [1, 1], [1, 3], [0, 3]]
@@ -128,7 +128,7 @@ def test_shapely_inputs():
 
 def test_pieces_of_one_obstacle_are_not_neighbours_in_d_s():
     """Heuristic (c)'s d_s: the gap between obstacles, not between pieces of one obstacle."""
-    from segplan.problem import characteristic_dimension
+    from segplan.planning.paper.problem import characteristic_dimension
 
     left, right = convex_pieces(L_SHAPE)  # touching pieces of the L
     far = np.array([[7.0, 0.0], [8.0, 0.0], [8.0, 1.0], [7.0, 1.0]])  # 3 m right of the L

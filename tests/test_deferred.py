@@ -1,14 +1,16 @@
-"""Deferred edge checks of the lattice search (segplan.deferred): sound, complete, cheapest repair."""
+"""Deferred edge checks of the lattice search (segplan.planning.lattice.edges): sound, complete, cheapest
+repair."""
 
 import math
 import zlib
 
 import pytest
 
-from segplan import NoPathError, lattice
-from segplan.lattice import plan_lattice
-from segplan.metrics import measure_scenario_path, plan_poses
+from segplan import NoPathError
+from segplan.planning.lattice import search as lattice
+from segplan.planning.lattice.search import plan_lattice
 from segplan.studies.floors import hard_cases, random_floor
+from segplan.viz.metrics import measure_scenario_path, plan_poses
 
 
 def _spy(monkeypatch):

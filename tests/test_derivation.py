@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from segplan import derivation as dv
-from segplan.cost import approx_terms, k_alpha, longd_approx_intrinsic
-from segplan.union import chord_slopes
+from segplan.model import derivation as dv
+from segplan.model.cost import approx_terms, k_alpha, longd_approx_intrinsic
+from segplan.model.union import chord_slopes
 
 
 def test_every_step_is_proved():
@@ -29,7 +29,7 @@ def test_bump_integrals_by_direct_quadrature():
     w /= 3.0 * (s.size - 1)
     assert w @ gp**2 == pytest.approx(2 / 15 * (m0**2 + m1**2 - m0 * m1 / 2), rel=1e-12)
     assert w @ gpp**2 == pytest.approx(4 * (m0**2 + m1**2 + m0 * m1), rel=1e-12)
-    # the same numbers from segplan.derivation's closed forms (unit chord, X = 1)
+    # the same numbers from segplan.model.derivation's closed forms (unit chord, X = 1)
     steps = {st.title: st for st in dv.bump_integral_steps()}
     values = {dv.X: 1, dv.mbar0: m0, dv.mbar1: m1, dv.t: 0}
     assert float(steps["int g'^2 dx = (2 X / 15) Q1"].rhs.subs(values)) == pytest.approx(w @ gp**2, rel=1e-12)

@@ -1,4 +1,5 @@
-"""The lattice planner's tight arcs (segplan.escape) and coarse cost-to-go (segplan.costtogo), issue 12.
+"""The lattice planner's tight arcs (segplan.planning.lattice.escape) and coarse cost-to-go
+(segplan.planning.lattice.guide), issue 12.
 
 Independent oracles: shapely's dense sampling of the swept segment
 (:func:`segplan.measure_scenario_path`) for freedom and the front-wheel length, the circle
@@ -18,7 +19,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from load_file import ROOT, load_file
 
-import segplan.lattice as lattice_module
+import segplan.planning.lattice.search as lattice_module
 from segplan import (
     NoPathError,
     ScenarioError,
@@ -27,16 +28,23 @@ from segplan import (
     plan_poses,
     plan_scenario,
 )
-from segplan.clearance import ClearanceGrid
-from segplan.costtogo import FINER_CELLS, GUIDE_AFTER, Guided, HeadingField
-from segplan.dubins import dubins_length_scalar
-from segplan.escape import IMPROVE_GAP, RADIUS_FACTORS, STEP, TURNS, improve_with_arcs, tight_arcs
-from segplan.lattice import lattice_search, plan_lattice
-from segplan.links import LinkModel
-from segplan.path import union_longd, unions_longd
-from segplan.primitives import heading_angles, max_reach
+from segplan.planning.dubins import dubins_length_scalar
+from segplan.planning.lattice.clearance import ClearanceGrid
+from segplan.planning.lattice.escape import (
+    IMPROVE_GAP,
+    RADIUS_FACTORS,
+    STEP,
+    TURNS,
+    improve_with_arcs,
+    tight_arcs,
+)
+from segplan.planning.lattice.guide import FINER_CELLS, GUIDE_AFTER, Guided, HeadingField
+from segplan.planning.lattice.primitives import heading_angles, max_reach
+from segplan.planning.lattice.search import lattice_search, plan_lattice
+from segplan.planning.links import LinkModel
+from segplan.planning.plan import union_longd, unions_longd
+from segplan.planning.validity import Workspace
 from segplan.studies import floors
-from segplan.validity import Workspace
 
 ROBOT = floors.ROBOT
 BOUNDS = floors.SMALL_BOUNDS

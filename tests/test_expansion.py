@@ -15,12 +15,12 @@ from scipy.interpolate import CubicSpline
 
 import segplan
 from segplan import Robot, make_scenario
-from segplan.bisectrix import clamped_spline_tangent, outward_bisectors, tangent_vertices
-from segplan.cost import longd_exact
-from segplan.expansion import Expander
-from segplan.floors import random_convex_polygon
-from segplan.pose import Pose
-from segplan.validity import Workspace
+from segplan.floor.random_floors import random_convex_polygon
+from segplan.model.cost import longd_exact
+from segplan.model.pose import Pose
+from segplan.planning.paper.bisectrix import clamped_spline_tangent, outward_bisectors, tangent_vertices
+from segplan.planning.paper.expansion import Expander
+from segplan.planning.validity import Workspace
 
 L = 1.2
 KAPPA = math.tan(math.radians(45.0)) / L
@@ -316,7 +316,7 @@ def test_curvature_check_agrees_with_union_max_curvature(x1, y1, t0, t1, alpha):
 )
 def test_union_from_intrinsic_equals_union(x1, y1, t0, t1, frac):
     """The planner's fast constructor (no validation) builds the same union."""
-    from segplan.pose import alpha_interval, intrinsic
+    from segplan.model.pose import alpha_interval, intrinsic
 
     p0, p1 = Pose(0.5, -0.25, t0), Pose(x1, y1, t1)
     if math.hypot(x1 - 0.5, y1 + 0.25) < 1e-3:

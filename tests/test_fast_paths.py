@@ -10,10 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from segplan import Union, collision, cost, random_world
-from segplan.cost import longd_intrinsic_scalar
-from segplan.frame import _exponents, _features, heuristic_alpha, heuristic_coefficients
-from segplan.geometry import (
+from segplan import Union, random_world
+from segplan.floor import collision
+from segplan.floor.geometry import (
     ConvexPolygon,
     edge_list,
     pose_collides,
@@ -22,9 +21,12 @@ from segplan.geometry import (
     segment_hits_polygon,
     touch_tolerance,
 )
-from segplan.links import LONGD_RTOL, LinkModel
-from segplan.pose import Pose, alpha_interval, intrinsic, intrinsic_interval
-from segplan.validity import Workspace
+from segplan.model import cost
+from segplan.model.cost import longd_intrinsic_scalar
+from segplan.model.frame import _exponents, _features, heuristic_alpha, heuristic_coefficients
+from segplan.model.pose import Pose, alpha_interval, intrinsic, intrinsic_interval
+from segplan.planning.links import LONGD_RTOL, LinkModel
+from segplan.planning.validity import Workspace
 
 
 def _random_cases(n, seed, wide=1.5):
@@ -242,7 +244,7 @@ def test_certain_hits_are_real_hits_near_obstacles():
 
     Unions pass close to obstacles (their ends near a vertex), so the broad phase keeps
     many pairs and the shortcut decides some of them: its answers, and the exact test's,
-    are checked against :func:`segplan.collision.collides` on every obstacle.
+    are checked against :func:`segplan.floor.collision.collides` on every obstacle.
     """
     rng = np.random.default_rng(11)
     certain = near_misses = 0

@@ -11,14 +11,19 @@ from scipy import integrate, optimize
 
 import segplan
 from segplan import Pose, longd_exact, optimal_alpha
-from segplan.cost import longd_integrand
 from segplan.fit.heuristic import fit_heuristic
 from segplan.fit.store import FRAME_ATOL, frame_check_grid
-from segplan.frame import case_b_alpha, heuristic_alpha, heuristic_coefficients, optimal_alpha_intrinsic
-from segplan.frame_exact import dlongd_dtan_intrinsic, dlongd_integrand, exact_alpha_intrinsic, parabola_alpha
-from segplan.pose import alpha_interval
+from segplan.model.cost import longd_integrand
+from segplan.model.frame import case_b_alpha, heuristic_alpha, heuristic_coefficients, optimal_alpha_intrinsic
+from segplan.model.frame_exact import (
+    dlongd_dtan_intrinsic,
+    dlongd_integrand,
+    exact_alpha_intrinsic,
+    parabola_alpha,
+)
+from segplan.model.pose import alpha_interval
+from segplan.model.union import chord_slopes, cubic_coefficients
 from segplan.studies.frames import heuristic_error_study
-from segplan.union import chord_slopes, cubic_coefficients
 
 DEG = math.pi / 180.0
 phi75 = st.floats(-75 * DEG, 75 * DEG)

@@ -1,7 +1,7 @@
 """One polygon validator for the whole package (issue 11), under near-degenerate polygons.
 
 ``segplan.collides``, ``segplan.make_scenario``, ``segplan.load_scenario`` (file text) and
-``segplan.plan`` validate obstacles with :func:`segplan.geometry.check_convex_polygon`
+``segplan.plan`` validate obstacles with :func:`segplan.floor.geometry.check_convex_polygon`
 (turns within ``ANGLE_TOL = 1e-9`` rad of 0 or pi are collinear vertices; edges shorter
 than ``LENGTH_TOL = 1e-12`` of the largest coordinate repeat a vertex). The property test
 builds convex polygons directly (points on a circle in angular order, any vertex count)
@@ -10,7 +10,7 @@ edge or just off it (a collinear run, a tiny turn either way), the ring closed b
 repeating the first vertex, the orientation reversed. The convex validator and
 ``collides`` (the paper's test of convex polygons) accept and reject exactly the same
 polygons; so do the three scenario entry points, which also take simple non-convex
-polygons (issue 14, split by :mod:`segplan.decompose`): every convex polygon, and a
+polygons (issue 14, split by :mod:`segplan.floor.decompose`): every convex polygon, and a
 non-convex one only if it is simple (shapely's ``is_valid``). Rejection names the polygon.
 
 The segment and polygon predicates against shapely: ``polygons_overlap`` (exact, closed
@@ -32,7 +32,7 @@ from hypothesis import event, example, given, settings
 from hypothesis import strategies as st
 
 import segplan
-from segplan import geometry as geo
+from segplan.floor import geometry as geo
 
 L = 1.0
 START, GOAL = (-3000.0, 2500.0, 0.0), (-2990.0, 2500.0, 0.0)  # far from every polygon: a free direct union
@@ -91,7 +91,7 @@ def test_every_entry_point_accepts_the_same_polygons(pts):
     by_validator = accepted(lambda: geo.check_convex_polygon(pts))
     by_collides = accepted(lambda: segplan.collides(FAR_UNION, pts))
     by_make = accepted(lambda: segplan.make_scenario(segplan.Robot(L), START, GOAL, [pts]))
-    by_load = accepted(lambda: segplan.world.loads_scenario(scenario_text(pts)))
+    by_load = accepted(lambda: segplan.floor.scenario.loads_scenario(scenario_text(pts)))
     # the default planner without refining its plan (a straight union 2.5 km from the polygon:
     # refining it checks no input and took two thirds of this test's time)
     by_plan = accepted(lambda: segplan.plan(START, GOAL, [pts], L, refine=False))
@@ -144,7 +144,7 @@ def test_segment_predicate_tolerance_is_explicit():
 
 def test_as_polygon_validates_by_default():
     """``as_polygon`` checks convexity unless told not to (``check=False``)."""
-    from segplan.geometry import as_polygon
+    from segplan.floor.geometry import as_polygon
 
     dart = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.5], [1.0, 2.0]]
     with pytest.raises(ValueError, match="convex"):

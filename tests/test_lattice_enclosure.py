@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from segplan import NoPathError, Robot, make_scenario, plan_scenario
-from segplan import lattice as lt
-from segplan.approach import steerable
-from segplan.path import check_limits, check_option
+from segplan.planning.lattice import search as lt
+from segplan.planning.lattice.approach import steerable
+from segplan.planning.plan import check_limits, check_option
 
 DEG = math.pi / 180.0
 
@@ -95,9 +95,9 @@ def test_check_limits():
 def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
     """Above VECTOR_SCREEN_MIN obstacles colliding() and pose_free() screen with arrays: the
     same answers, cache entries and broad-phase counts as the scalar loops."""
-    from segplan import validity
-    from segplan.links import LinkModel
-    from segplan.pose import Pose
+    from segplan.model.pose import Pose
+    from segplan.planning import validity
+    from segplan.planning.links import LinkModel
     from segplan.studies.floors import sweep_floor
 
     sc = sweep_floor(4.0, 128, 0)  # 80 x 48 m, 128 obstacles
@@ -187,7 +187,7 @@ def test_enclosure_limit_grows_with_the_turning_radius(monkeypatch):
 def test_default_planner_caps_the_papers_search(monkeypatch):
     """The default planner runs the paper's search within api.PAPER_EXPANSIONS expansions
     (and within a smaller max_expansions if given); planner="paper" keeps its own default."""
-    from segplan import api
+    from segplan.planning import api
 
     calls = []
     plan = api._plan

@@ -3,10 +3,11 @@
 A union of a plan is made to collide by putting a small obstacle on it (the same floor with
 one more square across the union's middle). Then each layer, alone, must refuse it:
 
-* the clearance grid's screen (:class:`segplan.clearance.ClearanceGrid`) does not clear it
-  (neither the screen of the primitive tables nor :meth:`~segplan.clearance.ClearanceGrid.screen`);
-* the deferred check of a lattice edge (``edge_free``, :mod:`segplan.deferred`) fails it;
-* the final certified check (:meth:`segplan.validity.Workspace.union_free`) fails it;
+* the clearance grid's screen (:class:`segplan.planning.lattice.clearance.ClearanceGrid`) does not clear it
+  (neither the screen of the primitive tables nor
+  :meth:`~segplan.planning.lattice.clearance.ClearanceGrid.screen`);
+* the deferred check of a lattice edge (``edge_free``, :mod:`segplan.planning.lattice.edges`) fails it;
+* the final certified check (:meth:`segplan.planning.validity.Workspace.union_free`) fails it;
 
 and, end to end: with the deferred check disabled (every edge it is asked about passes), the
 search plans through the obstacle and the final certified check catches that plan (the search
@@ -18,8 +19,10 @@ import numpy as np
 import pytest
 from test_lattice_oracles import dense_collides
 
-from segplan import NoPathError, lattice, make_scenario, validity
-from segplan.clearance import union_points
+from segplan import NoPathError, make_scenario
+from segplan.planning import validity
+from segplan.planning.lattice import search as lattice
+from segplan.planning.lattice.clearance import union_points
 from segplan.studies.floors import random_floor
 
 NAME = ("natural", 3)

@@ -7,7 +7,7 @@ Each check stands outside the search it judges:
   property, and ``try_goal`` is wrapped) and keeps the states it expanded and the states
   that tried the direct union to the goal. The oracle rebuilds that graph on its own:
   every primitive out of every expanded state, kept if the certified test
-  (:meth:`segplan.validity.Workspace.union_free`, no grid screen, no deferred check)
+  (:meth:`segplan.planning.validity.Workspace.union_free`, no grid screen, no deferred check)
   passes it; every tried direct union to the goal, kept if free. An independent Dijkstra
   on it gives the optimum: weight 1 must reach it, weight ``w`` stay within ``w`` times it.
 * **h' never above the cost-to-go.** The Dubins length against OMPL's Dubins space, against
@@ -22,7 +22,7 @@ Each check stands outside the search it judges:
   deferred repair in a real search takes the cheapest edge from an expanded state that the
   certified test passes (every primitive of every heading tried, not the search's tables).
 
-The coarse guide (:data:`segplan.costtogo.GUIDE_AFTER`) is an estimate, not a bound, and the
+The coarse guide (:data:`segplan.planning.lattice.guide.GUIDE_AFTER`) is an estimate, not a bound, and the
 goal's approach tree adds edges this recorder does not rebuild: the optimality oracles turn
 both off (a monkeypatch of the test, not of the library). The mutation tests at the end show
 that the oracles fail when the search is broken (h' times 1.5, duplicate detection broken,
@@ -42,11 +42,13 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from segplan import dubins, lattice, longd_exact
-from segplan.dubins import dubins_length, dubins_length_scalar
-from segplan.path import union_longd
-from segplan.pose import Pose
-from segplan.primitives import heading_angles, primitive_set
+from segplan import longd_exact
+from segplan.model.pose import Pose
+from segplan.planning import dubins
+from segplan.planning.dubins import dubins_length, dubins_length_scalar
+from segplan.planning.lattice import search as lattice
+from segplan.planning.lattice.primitives import heading_angles, primitive_set
+from segplan.planning.plan import union_longd
 from segplan.studies.floors import random_floor
 
 GOAL = ("goal",)
@@ -407,7 +409,7 @@ def test_dubins_length_of_one_exact_arc_or_segment_is_its_length(turn):
     psi=st.floats(-math.pi, math.pi),
 )
 def test_longd_of_a_union_within_the_steering_limit_is_at_least_its_dubins_length(d, phi0, phi1, t, psi):
-    from segplan.union import Union
+    from segplan.model.union import Union
 
     L, R = 1.0, 1.0  # 45 deg
     lo = -0.5 * math.pi - min(phi0, phi1, 0.0)
@@ -537,7 +539,7 @@ def test_every_repair_takes_the_cheapest_passing_edge(monkeypatch, name):
 
 def test_a_repair_taking_the_first_passing_edge_is_caught(monkeypatch):
     # the mutant: the search's repair without its sort (the first passing edge, not the cheapest)
-    from segplan import deferred
+    from segplan.planning.lattice import edges as deferred
 
     src = textwrap.dedent(inspect.getsource(deferred.DeferredChecks.repair))
     assert "    options.sort()\n" in src

@@ -13,6 +13,8 @@ import sys
 import textwrap
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -28,36 +30,52 @@ def lint_imports(config: Path, cwd: Path) -> subprocess.CompletedProcess:
 def test_layers_contract_is_kept():
     out = lint_imports(ROOT / "pyproject.toml", ROOT)
     assert out.returncode == 0, out.stdout + out.stderr
-    assert "1 kept, 0 broken" in out.stdout
+    assert "6 kept, 0 broken" in out.stdout
 
 
-def test_layers_contract_catches_an_upward_import(tmp_path):
-    """A copy of the package where geometry imports the planner (inside a function) breaks the contract."""
+def _copy_with(tmp_path: Path, module: str, code: str) -> subprocess.CompletedProcess:
+    """Lint a copy of the package where ``module`` (a path under segplan/) ends with ``code``."""
     pkg = tmp_path / "segplan"
-    pkg.mkdir()
     for src in (ROOT / "segplan").rglob("*.py"):
         dst = pkg / src.relative_to(ROOT / "segplan")
         dst.parent.mkdir(parents=True, exist_ok=True)
         dst.write_text(src.read_text(encoding="utf-8"), encoding="utf-8")
-    geometry = pkg / "geometry.py"
-    geometry.write_text(
-        geometry.read_text(encoding="utf-8")
-        + textwrap.dedent(
-            """
-
-            def _upward():
-                from .api import plan  # an upward import, inside a function
-
-                return plan
-            """
-        ),
-        encoding="utf-8",
-    )
+    target = pkg / module
+    target.write_text(target.read_text(encoding="utf-8") + textwrap.dedent(code), encoding="utf-8")
     config = tmp_path / "pyproject.toml"
     config.write_text((ROOT / "pyproject.toml").read_text(encoding="utf-8"), encoding="utf-8")
-    out = lint_imports(config, tmp_path)
+    return lint_imports(config, tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("module", "target", "expected"),
+    [
+        # the floor imports the planner: an upward import between sub-packages
+        ("floor/geometry.py", "..planning.api", "segplan.floor.geometry -> segplan.planning.api"),
+        # the paper's mathematics imports the floor
+        ("model/union.py", "..floor.collision", "segplan.model.union -> segplan.floor.collision"),
+        # the two planners are siblings: the lattice may not use the paper's search
+        (
+            "planning/lattice/shortcut.py",
+            "..paper.search",
+            "segplan.planning.lattice.shortcut -> segplan.planning.paper.search",
+        ),
+        # inside a sub-package: the union may not know the cost
+        ("model/union.py", ".cost", "segplan.model.union -> segplan.model.cost"),
+    ],
+)
+def test_layers_contract_catches_an_upward_import(tmp_path, module, target, expected):
+    """A copy of the package with one forbidden import (inside a function) breaks a contract."""
+    code = f"""
+
+        def _upward():
+            from {target} import __name__ as name  # forbidden, inside a function
+
+            return name
+        """
+    out = _copy_with(tmp_path, module, code)
     assert out.returncode != 0
-    assert "BROKEN" in out.stdout and "segplan.geometry -> segplan.api" in out.stdout, out.stdout
+    assert "BROKEN" in out.stdout and expected in out.stdout, out.stdout
 
 
 def test_every_module_declares_its_exports():
@@ -134,10 +152,10 @@ def private_uses(code: str) -> list[str]:
 
 def test_private_use_detector_finds_both_forms():
     code = (
-        "import segplan\nfrom segplan import frame as fr\nfrom segplan.cost import _x\n"
-        "fr._y\nsegplan.pose._z\n"
+        "import segplan\nfrom segplan.model import frame as fr\nfrom segplan.model.cost import _x\n"
+        "fr._y\nsegplan.model.pose._z\n"
     )
-    assert private_uses(code) == ["from segplan.cost import _x", "fr._y", "segplan.pose._z"]
+    assert private_uses(code) == ["from segplan.model.cost import _x", "fr._y", "segplan.model.pose._z"]
     assert private_uses("import numpy as np\nnp._NoValue\nfrom segplan import plan\n") == []
 
 

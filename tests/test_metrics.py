@@ -1,4 +1,4 @@
-"""The shared path measurement (segplan.metrics) against analytic cases and independent oracles."""
+"""The shared path measurement (segplan.viz.metrics) against analytic cases and independent oracles."""
 
 import math
 
@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 import segplan
-from segplan.metrics import measure_path, measure_scenario_path, plan_poses, se2_poses, union_poses
+from segplan.viz.metrics import measure_path, measure_scenario_path, plan_poses, se2_poses, union_poses
 
 
 def line(d: float, n: int = 101, theta: float = 0.0, start=(0.0, 0.0)) -> np.ndarray:

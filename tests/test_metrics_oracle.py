@@ -1,10 +1,10 @@
-"""The path oracle (segplan.metrics) checked against an independent shapely computation (issue 24).
+"""The path oracle (segplan.viz.metrics) checked against an independent shapely computation (issue 24).
 
-segplan.metrics is the oracle every planner's output is judged by, so it is itself checked
+segplan.viz.metrics is the oracle every planner's output is judged by, so it is itself checked
 here, on the cases where a measurement goes wrong first: a swept segment that just touches an
 obstacle or a wall (distance exactly 0, and a tiny positive gap), cusps (the direction of
 travel reversing, at a sample or inside a sample interval) and a turn much sharper than the
-robot is long. The oracle below shares no code with segplan.metrics: one shapely
+robot is long. The oracle below shares no code with segplan.viz.metrics: one shapely
 ``LineString`` per sampled segment A-B, measured one polygon at a time in a Python loop
 (not the vectorised, unioned and prepared geometry of the module), the lengths as shapely
 lengths, the reversals from the signs of the travel along the sampled headings, and, for the
@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPoint, Point, Polygon, box
 
 import segplan
-from segplan.metrics import measure_path, measure_scenario_path
+from segplan.viz.metrics import measure_path, measure_scenario_path
 
 L = 1.0
 

@@ -31,8 +31,10 @@ def test_mutmut_targets_exist():
             if "::" in t:
                 path, name = t.split("::")
                 assert f"def {name}(" in (ROOT / path).read_text(), t
-    config = mutation._pyproject("search")
-    assert config.count("[tool.mutmut]") == 1 and 'only_mutate = ["segplan/search.py"]' in config
+    config = mutation._pyproject("planning/paper/search")
+    assert (
+        config.count("[tool.mutmut]") == 1 and 'only_mutate = ["segplan/planning/paper/search.py"]' in config
+    )
 
 
 def test_merge_replaces_and_adds_modules_with_their_provenance(tmp_path):

@@ -60,11 +60,11 @@ def test_animate_gif(tmp_path, capsys):
     assert main(["plan", "single_obstacle", "--animate", str(gif)]) == 0
     assert f"animation   {gif}" in capsys.readouterr().out
     with Image.open(gif) as im:
-        assert im.format == "GIF" and im.n_frames == segplan.animate.FRAMES
+        assert im.format == "GIF" and im.n_frames == segplan.viz.animate.FRAMES
 
 
 def test_animation_frames_follow_the_front_wheel():
-    from segplan import animate
+    from segplan.viz import animate
 
     sc = segplan.load_scenario("single_obstacle")
     plan = segplan.plan_scenario(sc)
@@ -91,7 +91,7 @@ def test_html_animation_frames_are_small_palette_pngs():
 
     from PIL import Image
 
-    from segplan import animate
+    from segplan.viz import animate
 
     sc = segplan.load_scenario("single_obstacle")
     anim = animate.animate_plan(segplan.plan_scenario(sc), sc, frames=3)

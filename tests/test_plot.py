@@ -1,4 +1,4 @@
-"""segplan.plot draws what segplan computes, on the given axes, with units and equal aspect."""
+"""segplan.viz.plot draws what segplan computes, on the given axes, with units and equal aspect."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 import segplan  # noqa: E402
-from segplan import plot  # noqa: E402
+from segplan.viz import plot  # noqa: E402
 
 P0 = (0.0, 0.0, math.radians(30.0))
 P1 = (4.0, 1.0, math.radians(-20.0))
@@ -97,8 +97,8 @@ def test_longd_curve_is_formula_1():
 def test_longd_default_grid_inside_feasible_interval():
     ax = plot.plot_longd(P0, P1, 1.0, n=21)
     x = np.radians(ax.lines[0].get_xdata())
-    geo = segplan.pose.intrinsic(P0, P1)
-    lo, hi = segplan.pose.feasible_alpha_interval(geo.phi0, geo.phi1)
+    geo = segplan.model.pose.intrinsic(P0, P1)
+    lo, hi = segplan.model.pose.feasible_alpha_interval(geo.phi0, geo.phi1)
     assert lo < x.min() and x.max() < hi and len(x) == 21
 
 

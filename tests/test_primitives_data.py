@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from segplan import primitives
 from segplan.fit.store import primitive_differences
-from segplan.primitives import (
+from segplan.planning.lattice import primitives
+from segplan.planning.lattice.primitives import (
     STORED_CELLS,
     STORED_STEER,
     compute_primitive_set,

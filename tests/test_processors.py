@@ -1,7 +1,7 @@
 """The stored data hold on other processors (issue 23): other processors simulated on this one.
 
-The fitted constants (``segplan/constants.json``) and the default motion primitives
-(``segplan/primitives.npz``) are recomputed, and chapter 4 (which refits the case-b
+The fitted constants (``segplan/model/constants.json``) and the default motion primitives
+(``segplan/planning/lattice/primitives.npz``) are recomputed, and chapter 4 (which refits the case-b
 formula and compares it with the stored one) is re-executed, in fresh processes that round
 differently from the default ones:
 

@@ -18,11 +18,11 @@ from test_search import check_plan
 
 import segplan
 from segplan import NoPathError, Refinement, plan_scenario, random_world, refine
-from segplan.frame import heuristic_alpha
-from segplan.pose import Pose
-from segplan.refine import certain_failures
-from segplan.union import Union, cubic_coefficients
-from segplan.validity import Workspace
+from segplan.model.frame import heuristic_alpha
+from segplan.model.pose import Pose
+from segplan.model.union import Union, cubic_coefficients
+from segplan.planning.refine import certain_failures
+from segplan.planning.validity import Workspace
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 NAMES = sorted(p.stem for p in SCENARIOS.glob("*.json"))

@@ -35,7 +35,7 @@ def watching_the_refiner():
     Wraps ``_Refiner.polish`` and ``_Refiner.shortcut`` (internal); a chain's cost is the
     sum of the refiner's own checked link costs (``_Refiner.link``).
     """
-    from segplan.refine import MIN_GAIN, _Refiner
+    from segplan.planning.refine import MIN_GAIN, _Refiner
 
     log = []
     polish, shortcut = _Refiner.polish, _Refiner.shortcut
@@ -65,7 +65,7 @@ def watching_the_refiner():
 @contextmanager
 def length_rewarded():
     """The refiner's link cost negated (internal ``_Refiner.cost``): it then seeks longer chains."""
-    from segplan.refine import _Refiner
+    from segplan.planning.refine import _Refiner
 
     original = _Refiner.cost
     _Refiner.cost = staticmethod(lambda u: -original(u))
@@ -96,10 +96,10 @@ def flagged(scenario, A, B):
 
     Returns the flags and the unions (None where no cubic joins the poses).
     """
-    from segplan.frame import heuristic_alpha
-    from segplan.refine import certain_failures
-    from segplan.union import cubic_coefficients
-    from segplan.validity import Workspace
+    from segplan.model.frame import heuristic_alpha
+    from segplan.model.union import cubic_coefficients
+    from segplan.planning.refine import certain_failures
+    from segplan.planning.validity import Workspace
 
     robot = scenario.robot
     ws = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)

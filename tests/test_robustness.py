@@ -21,7 +21,7 @@ import pandas as pd
 import pytest
 import shapely
 
-from segplan.api import PAPER_SHARE
+from segplan.planning.api import PAPER_SHARE
 from segplan.studies import executor, ompl_runner
 from segplan.studies import floors as fl
 from segplan.studies import robustness as rb

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
-from segplan.romberg import RombergError, romberg
+from segplan.model.romberg import RombergError, romberg
 
 
 @given(

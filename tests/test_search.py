@@ -17,8 +17,8 @@ from hypothesis import strategies as st
 
 import segplan
 from segplan import NoPathError, Plan, Pose, Robot, make_scenario, plan, plan_scenario, random_world
-from segplan.cost import longd_exact
-from segplan.problem import characteristic_dimension, polygon_gap
+from segplan.model.cost import longd_exact
+from segplan.planning.paper.problem import characteristic_dimension, polygon_gap
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 SQUARE = [[4.0, -1.0], [6.0, -1.0], [6.0, 1.0], [4.0, 1.0]]
@@ -234,7 +234,7 @@ def test_characteristic_dimension_measures_each_wall(wall):
 
 def test_problem_defaults_are_the_papers_method():
     """``Problem``'s defaults: h' (a), the LONGD link cost, d_s = 0 and no turning radius."""
-    from segplan.problem import Problem
+    from segplan.planning.paper.problem import Problem
 
     p = Problem(Pose(0.0, 0.0, 0.0), Pose(5.0, 0.0, 0.0), links=None)
     assert (p.heuristic, p.cost, p.ds_over_L, p.R) == ("a", "longd", 0.0, 0.0)
@@ -256,7 +256,7 @@ def test_heuristic_c_limits():
 
 def test_link_observer_records_without_changing_the_plan():
     """api.plan_scenario_observed: a study sees every link cost of a search; the plan is unchanged."""
-    from segplan.api import plan_scenario_observed
+    from segplan.planning.api import plan_scenario_observed
 
     sc = segplan.load_scenario(Path(__file__).resolve().parents[1] / "scenarios" / "fig5_example1.json")
     seen = []

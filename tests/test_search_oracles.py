@@ -47,7 +47,7 @@ def recording():
     Wraps ``Expander.successors`` (internal); ``longd`` is the search's LONGD link cost
     (``LinkModel.link_cost``), ``chord`` the distance link of the paper's baseline.
     """
-    from segplan.expansion import Expander
+    from segplan.planning.paper.expansion import Expander
 
     graph = []
     original = Expander.successors
@@ -67,7 +67,7 @@ def recording():
 @contextmanager
 def uniform_cost():
     """Searches run with h' = 0 (uniform cost): patches the problem's ``cost_to_go``."""
-    from segplan.problem import Problem
+    from segplan.planning.paper.problem import Problem
 
     original = Problem.cost_to_go
     Problem.cost_to_go = lambda self, pose, depth: 0.0

@@ -20,8 +20,8 @@ from scipy.sparse.csgraph import csgraph_from_dense, floyd_warshall
 
 import segplan
 from segplan import Robot, Union, make_scenario, plan_scenario, random_world
-from segplan.floors import random_convex_polygon
-from segplan.pose import feasible_alpha_interval, intrinsic
+from segplan.floor.random_floors import random_convex_polygon
+from segplan.model.pose import feasible_alpha_interval, intrinsic
 from segplan.studies.searches import (
     plan_rear_length,
     point_lower_bounds,

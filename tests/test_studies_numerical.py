@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from segplan.cost import K_COEF, k_from_coef
+from segplan.model.cost import K_COEF, k_from_coef
 from segplan.studies.approx import (
     k_uncapped_limit,
     sample_domain,

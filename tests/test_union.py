@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from segplan import Pose, Union
-from segplan.pose import alpha_interval, intrinsic, wrap
+from segplan.model.pose import alpha_interval, intrinsic, wrap
 
 coord = st.floats(-50, 50)
 heading = st.floats(-math.pi, math.pi)
@@ -140,7 +140,7 @@ def test_wrap_of_pi_is_pi():
 
 
 def test_wrap_convention_is_half_open_at_minus_pi():
-    from segplan.pose import wrap_fmod, wrap_scalar
+    from segplan.model.pose import wrap_fmod, wrap_scalar
 
     for a, expected in ((-math.pi, math.pi), (math.pi, math.pi), (3 * math.pi, math.pi), (0.5, 0.5)):
         assert wrap(a) == pytest.approx(expected, abs=1e-12)

@@ -17,8 +17,7 @@ from shapely.geometry import LineString, Point, Polygon
 
 import segplan
 from segplan import Robot, ScenarioError, load_scenario, make_scenario, random_world, save_scenario
-from segplan.floors import random_convex_polygon
-from segplan.geometry import (
+from segplan.floor.geometry import (
     DEFAULT_MAX_ARC,
     check_convex_polygon,
     enlarge_polygon,
@@ -26,7 +25,8 @@ from segplan.geometry import (
     pose_segment,
     segment_hits_polygon,
 )
-from segplan.world import loads_scenario, scenario_from_dict
+from segplan.floor.random_floors import random_convex_polygon
+from segplan.floor.scenario import loads_scenario, scenario_from_dict
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
 SQUARE = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]
@@ -647,7 +647,7 @@ def test_random_world_given_poses_and_overlap_allowed():
 def test_random_world_stays_the_same_world(seed, kwargs, digest):
     """Tests, benchmarks and notebooks keep drawing the same worlds: the digests (poses and
     vertices to 1e-9 m) were recorded with the placement loop random_world had before
-    segplan.floors.place_disjoint served it and the study floors (issue 11)."""
+    segplan.floor.random_floors.place_disjoint served it and the study floors (issue 11)."""
     w = random_world(seed, 8, **kwargs)
     data = [[round(float(v), 9) for v in p] for p in (w.start, w.goal)]
     data += [[round(float(v), 9) for v in np.ravel(p)] for p in w.obstacles]

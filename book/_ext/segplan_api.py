@@ -95,7 +95,7 @@ HEADER = """\
 Everything `import segplan` offers (`segplan.__all__`), grouped by the sections of the paper
 that each piece implements, with the docstrings of the code (parameters, returns, the
 formula or section of the paper they compute). `help(segplan.plan)` shows the same text in
-Python. Plots are in `segplan.plot`, animations in `segplan.animate`, and the book's
+Python. Plots are in `segplan.viz.plot`, animations in `segplan.viz.animate`, and the book's
 studies in `segplan.studies`; they are not part of this reference.
 """
 

@@ -8,7 +8,7 @@ slope relative to intrinsic reference system" where [2] is used; "out of the eva
 range for formula [2], the Romberg algorithm is used".
 
 Nothing here is typed: :func:`run_calibration` computes, on a fixed grid and with exact
-LONGD (Romberg, :func:`segplan.cost.exact_values`),
+LONGD (Romberg, :func:`segplan.model.cost.exact_values`),
 
 * ``k_alpha = c0 + c1 sin^2(alpha)`` by linear least squares of the relative error of
   [2] (the relative error is linear in ``k_alpha``), with ``sin^2`` held at its value at
@@ -20,7 +20,7 @@ LONGD (Romberg, :func:`segplan.cost.exact_values`),
 
 iterating fit and domain until the domain no longer changes (a few tenths of a second
 once the grid's exact values are computed). The planner does not run this: it reads the
-result stored with the package (:mod:`segplan.constants`, written by
+result stored with the package (:mod:`segplan.model.constants`, written by
 ``python -m segplan.fit``).
 
 Why ``d / L`` matters: the rear excess's relative error does not depend on ``d / L``, but
@@ -29,7 +29,7 @@ the front-wheel excess comes from a binomial expansion in ``L f''``, which fails
 Why ``c0 + c1 sin^2``: LONGD is unchanged by the reflection ``(phi0, phi1, alpha) ->
 -(...)``, so ``k_alpha`` is even in alpha; the expansion consistent to second order in the
 bump scales the rear excess by ``cos^2(alpha) = 1 - sin^2(alpha)`` (see
-:mod:`segplan.derivation`), so ``k_alpha`` should fall with ``sin^2`` at first order. By
+:mod:`segplan.model.derivation`), so ``k_alpha`` should fall with ``sin^2`` at first order. By
 measurement (:func:`segplan.studies.approx.k_basis_comparison`), this two-parameter form
 fits as well as a separate ``k`` for each grid value of alpha
 (:func:`segplan.studies.approx.k_by_alpha`) and better than a constant or
@@ -44,7 +44,7 @@ from functools import cache
 
 import numpy as np
 
-from ..cost import Domain, approx_terms, exact_values, k_from_coef
+from ..model.cost import Domain, approx_terms, exact_values, k_from_coef
 
 __all__ = [
     "ALPHA_GRID_DEG",

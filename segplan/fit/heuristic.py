@@ -2,10 +2,10 @@
 
 Section "Optimal Reference System", "Heuristic Algorithm", case b: "A simple closed
 formula has been developed, which interpolates optimal values computed exactly." The
-paper never printed it; :func:`fit_heuristic` builds ours (:func:`segplan.frame.case_b_alpha`)
-from exact optima (:func:`segplan.frame_exact.exact_alpha_intrinsic`) by weighted least
+paper never printed it; :func:`fit_heuristic` builds ours (:func:`segplan.model.frame.case_b_alpha`)
+from exact optima (:func:`segplan.model.frame_exact.exact_alpha_intrinsic`) by weighted least
 squares. The planner does not run this: it reads the coefficients stored with the package
-(:func:`segplan.frame.heuristic_coefficients`, written by ``python -m segplan.fit``).
+(:func:`segplan.model.frame.heuristic_coefficients`, written by ``python -m segplan.fit``).
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ import math
 
 import numpy as np
 
-from ..frame import HeuristicFit, heuristic_features
-from ..frame_exact import exact_alpha_intrinsic, longd_unit
-from ..pose import alpha_interval
+from ..model.frame import HeuristicFit, heuristic_features
+from ..model.frame_exact import exact_alpha_intrinsic, longd_unit
+from ..model.pose import alpha_interval
 
 __all__ = ["fit_heuristic"]
 

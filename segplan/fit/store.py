@@ -3,15 +3,17 @@
 ``python -m segplan.fit`` recomputes ``k_alpha`` and the domain of formula [2]
 (:func:`segplan.fit.formula2.run_calibration`) and the case-b coefficients of the
 heuristic frame (:func:`segplan.fit.heuristic.fit_heuristic`) and rewrites
-``segplan/constants.json`` (:data:`segplan.constants.PATH`) with their provenance;
+``segplan/model/constants.json`` (:data:`segplan.model.constants.PATH`) with their provenance;
 ``--check`` only compares the recomputed values with the stored ones (exit status 1 on a
 difference beyond :data:`RTOL`).
 
 It also recomputes the default motion primitives of the lattice planner (beyond the paper:
 unit ``L``, 45 deg steering, ``L / resolution`` in
-:data:`segplan.primitives.STORED_CELLS`; :func:`segplan.primitives.compute_primitive_set`,
+:data:`segplan.planning.lattice.primitives.STORED_CELLS`;
+:func:`segplan.planning.lattice.primitives.compute_primitive_set`,
 which uses the heuristic frame just fitted) and rewrites (or checks)
-``segplan/primitives.npz`` (:data:`segplan.primitives.DATA_PATH`), its provenance stored
+``segplan/planning/lattice/primitives.npz`` (:data:`segplan.planning.lattice.primitives.DATA_PATH`), its
+provenance stored
 beside the arrays.
 """
 
@@ -30,8 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import constants, primitives
-from ..frame import HeuristicFit, case_b_alpha
+from ..model import constants
+from ..model.frame import HeuristicFit, case_b_alpha
+from ..planning.lattice import primitives
 from . import formula2
 from .heuristic import fit_heuristic
 

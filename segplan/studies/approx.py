@@ -9,8 +9,8 @@ case (:func:`error_study`), compare forms of ``k_alpha`` (:func:`k_by_alpha`,
 exact cost into its terms (:func:`exact_split`, :func:`term_study`) and record the links
 the planner evaluates (:func:`planner_links`); Romberg's work at the same error is
 :mod:`segplan.studies.romberg_cost`.
-They use the stored constants of [2] (:data:`segplan.cost.K_COEF`,
-:data:`segplan.cost.APPROX_DOMAIN`) and the fitting procedures of
+They use the stored constants of [2] (:data:`segplan.model.cost.K_COEF`,
+:data:`segplan.model.cost.APPROX_DOMAIN`) and the fitting procedures of
 :mod:`segplan.fit.formula2`; nothing here is part of the stable API.
 """
 
@@ -21,7 +21,8 @@ import math
 
 import numpy as np
 
-from ..cost import (
+from ..fit.formula2 import ALPHA_GRID_DEG, calibration_grid, fit_k, grid_inside, k_basis, run_calibration
+from ..model.cost import (
     APPROX_DOMAIN,
     K_COEF,
     Domain,
@@ -29,8 +30,7 @@ from ..cost import (
     k_from_coef,
     longd_approx_intrinsic,
 )
-from ..fit.formula2 import ALPHA_GRID_DEG, calibration_grid, fit_k, grid_inside, k_basis, run_calibration
-from ..union import chord_slopes
+from ..model.union import chord_slopes
 
 __all__ = [
     "error_study",
@@ -223,7 +223,7 @@ def k_basis_comparison():
 def variant_comparison(n_wide: int = 20000, seed: int = 0):
     """Formula [2] against its OCR-literal alternatives, each with its own fitted ``k(alpha)``.
 
-    Every variant of :func:`segplan.derivation.variants` is evaluated (lambdified sympy
+    Every variant of :func:`segplan.model.derivation.variants` is evaluated (lambdified sympy
     expression) on the calibration grid; ``k(alpha)`` (same two-parameter form) is fitted
     for each variant inside the domain of the derived [2], and the errors are measured
     there and over a wide sample (:func:`sample_wide`).
@@ -236,7 +236,7 @@ def variant_comparison(n_wide: int = 20000, seed: int = 0):
     """
     import pandas as pd
 
-    from .. import derivation
+    from ..model import derivation
 
     g = calibration_grid()
     inside = grid_inside(g, APPROX_DOMAIN)
@@ -296,13 +296,13 @@ def _parse_variant(name: str) -> tuple[str, str, str]:
 def variant_terms(name: str, d_over_L, phi0, phi1, alpha):
     """The rear excess (before ``k``) and the front excess of a variant of [2] (``L = 1``).
 
-    ``name`` is a key of :func:`segplan.derivation.variants`; the variant reads
+    ``name`` is a key of :func:`segplan.model.derivation.variants`; the variant reads
     ``LONGD ~ d (1 + k rear) + front``.
     """
-    from .. import derivation
+    from ..model import derivation
 
     if name not in derivation.variants():
-        raise ValueError(f"name must be a variant of segplan.derivation.variants(), got {name!r}")
+        raise ValueError(f"name must be a variant of segplan.model.derivation.variants(), got {name!r}")
     rule, cross, exponent = _parse_variant(name)
     m0, m1 = chord_slopes(phi0, phi1, alpha)
     rear = derivation.rear_lambdified(rule)(alpha, m0, m1)
@@ -315,7 +315,7 @@ def variant_domains():
 
     :func:`variant_comparison` measures every variant inside the domain fitted for the
     derived [2], which favours it. Here each variant of
-    :func:`segplan.derivation.variants` goes through the whole calibration
+    :func:`segplan.model.derivation.variants` goes through the whole calibration
     (:func:`run_calibration` with the variant's terms), so each gets the largest domain
     where *its* errors meet the paper's bounds on the grid; a larger domain is a better
     formula.
@@ -329,7 +329,7 @@ def variant_domains():
     """
     import pandas as pd
 
-    from .. import derivation
+    from ..model import derivation
 
     g = calibration_grid()
     args = (g["d_over_L"], np.radians(g["phi0_deg"]), np.radians(g["phi1_deg"]), np.radians(g["alpha_deg"]))
@@ -378,9 +378,9 @@ def term_study(
     d_over_L, phi0, phi1, alpha : array_like
         Cases with ``L = 1`` (radians).
     rules : sequence of str
-        Rear rules (:func:`segplan.derivation.rear_term`).
+        Rear rules (:func:`segplan.model.derivation.rear_term`).
     fronts : sequence of (cross, exponent)
-        Front terms (:func:`segplan.derivation.front_term`), rationals as strings.
+        Front terms (:func:`segplan.model.derivation.front_term`), rationals as strings.
 
     Returns
     -------
@@ -393,7 +393,7 @@ def term_study(
     """
     import pandas as pd
 
-    from .. import derivation
+    from ..model import derivation
 
     dl, p0, p1, a = (np.ravel(v).astype(float) for v in np.broadcast_arrays(d_over_L, phi0, phi1, alpha))
     longd, rear = exact_split(dl, p0, p1, a)
@@ -421,9 +421,9 @@ def planner_links(scenarios, **options):
     """Every LONGD evaluation the planner makes while solving ``scenarios``, recorded.
 
     Each scenario is planned with the paper's search (``options`` passed on);
-    meanwhile every call of the planner's link cost (:class:`segplan.links.LinkModel`, seen through
-    :func:`segplan.api.plan_scenario_observed`; which uses
-    [2] inside the domain and [1] outside: :func:`segplan.cost.longd`) is recorded, for
+    meanwhile every call of the planner's link cost (:class:`segplan.planning.links.LinkModel`, seen through
+    :func:`segplan.planning.api.plan_scenario_observed`; which uses
+    [2] inside the domain and [1] outside: :func:`segplan.model.cost.longd`) is recorded, for
     links (``g``) and heuristic estimates (``h'`` (a)) alike. The unions are the ones the
     search builds: in their optimal reference system
     (:func:`segplan.optimal_alpha_intrinsic`), or the steering fallback's frame.
@@ -444,8 +444,8 @@ def planner_links(scenarios, **options):
     """
     import pandas as pd
 
-    from ..api import plan_scenario_observed
-    from ..path import NoPathError
+    from ..planning.api import plan_scenario_observed
+    from ..planning.plan import NoPathError
 
     record = []
     rows = []
@@ -470,7 +470,7 @@ def k_uncapped_limit(coef=K_COEF) -> float:
     """Largest ``|alpha|`` (radians) up to which ``c0 + c1 sin^2(alpha)`` stays in (0, 1) uncapped.
 
     The stored ``k_alpha`` holds ``sin^2`` at its 45 deg value beyond the calibration grid
-    (:data:`segplan.cost.S2_CAP`); without that cap the fitted form leaves (0, 1) where it
+    (:data:`segplan.model.cost.S2_CAP`); without that cap the fitted form leaves (0, 1) where it
     crosses 0 (``c1 < 0``) or 1 (``c1 > 0``). Returns ``pi / 2`` when it never does.
 
     Raises
@@ -489,7 +489,7 @@ def k_uncapped_limit(coef=K_COEF) -> float:
 def variant_calibration(name: str):
     """A variant of [2] calibrated on its own (:func:`run_calibration` with its terms).
 
-    ``name`` is a key of :func:`segplan.derivation.variants`, e.g. the scan read literally,
+    ``name`` is a key of :func:`segplan.model.derivation.variants`, e.g. the scan read literally,
     ``"simpson|cross=1/2|exp=-5/2"``. Returns the :class:`segplan.fit.formula2.Calibration`.
     """
     return _variant_calibration(name)

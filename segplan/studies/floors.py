@@ -50,10 +50,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..floors import place_disjoint
-from ..geometry import enlarge_polygon, pose_collides, pose_in_bounds
-from ..pose import wrap_scalar
-from ..world import Robot, Scenario, load_scenario, make_scenario
+from ..floor.geometry import enlarge_polygon, pose_collides, pose_in_bounds
+from ..floor.random_floors import place_disjoint
+from ..floor.scenario import Robot, Scenario, load_scenario, make_scenario
+from ..model.pose import wrap_scalar
 
 __all__ = [
     "GENERATOR_VERSION",

@@ -1,17 +1,17 @@
 """Study helper for the book's optimal-frame chapter: the heuristic against the exact optimum.
 
 Section "Optimal Reference System": the heuristic algorithm (closed forms,
-:func:`segplan.frame.heuristic_alpha`) is judged by the LONGD [1] of its frame against the
-exact algorithm's (:func:`segplan.frame_exact.exact_alpha_intrinsic`).
+:func:`segplan.model.frame.heuristic_alpha`) is judged by the LONGD [1] of its frame against the
+exact algorithm's (:func:`segplan.model.frame_exact.exact_alpha_intrinsic`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..frame import HeuristicFit, heuristic_alpha, inside
-from ..frame_exact import exact_alpha_intrinsic, longd_unit, parabola_alpha
-from ..pose import alpha_interval
+from ..model.frame import HeuristicFit, heuristic_alpha, inside
+from ..model.frame_exact import exact_alpha_intrinsic, longd_unit, parabola_alpha
+from ..model.pose import alpha_interval
 
 __all__ = ["case_a_boundary", "paper_case_a_excess", "heuristic_error_study"]
 
@@ -32,7 +32,7 @@ def heuristic_error_study(phi0, phi1, d_over_L, L: float = 1.0, fit: HeuristicFi
     L : float
         Robot length.
     fit : HeuristicFit, optional
-        Case-b coefficients (default: the stored ones, :func:`segplan.frame.heuristic_coefficients`).
+        Case-b coefficients (default: the stored ones, :func:`segplan.model.frame.heuristic_coefficients`).
 
     Returns
     -------
@@ -88,8 +88,8 @@ def paper_case_a_excess(d_over_L, phi0, phi1):
     """Relative LONGD excess of the paper's case-a frame over the exact optimum (``L = 1``).
 
     Section "Optimal Reference System", case a: ``tan a0 = (1/m0 + 1/m1) / 2``
-    (:func:`segplan.frame_exact.parabola_alpha`, clipped just inside the interval) against
-    :func:`segplan.frame_exact.exact_alpha_intrinsic`; both costs are LONGD [1] by Romberg.
+    (:func:`segplan.model.frame_exact.parabola_alpha`, clipped just inside the interval) against
+    :func:`segplan.model.frame_exact.exact_alpha_intrinsic`; both costs are LONGD [1] by Romberg.
     Inputs broadcast; headings of opposite signs (case a).
     """
     shape = np.broadcast_shapes(np.shape(d_over_L), np.shape(phi0), np.shape(phi1))

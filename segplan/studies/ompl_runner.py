@@ -4,7 +4,7 @@ OMPL's asymptotically optimal planners RRT*, Informed RRT* and BIT* (the ``ompl`
 Python bindings, optional dependency group ``peers``) plan for segplan's robot on a
 segplan scenario at a wall-clock budget and a seed, each run in a fresh process
 (:func:`solve_ompl_isolated`); every path is measured by the one shared function
-:func:`segplan.metrics.measure_scenario_path`. :mod:`segplan.studies.peers` (chapter 8,
+:func:`segplan.viz.metrics.measure_scenario_path`. :mod:`segplan.studies.peers` (chapter 8,
 ``benchmarks/peers.py``) and :mod:`segplan.studies.robustness` (chapter 9,
 ``benchmarks/robustness.py``) run OMPL through this module and store :func:`provenance`
 beside their runs.
@@ -18,8 +18,8 @@ The peers' problem, made as equal as OMPL allows
   robot does; its paths carry cusps (``reversals``).
 - **Validity**: a state is valid iff the robot's segment A-B at that pose is free of every
   *enlarged* obstacle and strictly inside the free bounds: :class:`SegmentValidity`, which
-  calls segplan's own pose tests (:func:`segplan.geometry.pose_collides`,
-  :func:`segplan.geometry.pose_in_bounds`) behind exact-safe bounding-box filters.
+  calls segplan's own pose tests (:func:`segplan.floor.geometry.pose_collides`,
+  :func:`segplan.floor.geometry.pose_in_bounds`) behind exact-safe bounding-box filters.
   It answers exactly as :meth:`segplan.Scenario.is_free` (tested).
 - **Motion validity**: the discrete validator OMPL installs for these spaces
   (``DubinsMotionValidator``, ``ReedsSheppMotionValidator``): states along the curve every
@@ -86,9 +86,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..geometry import as_polygon, pose_collides, pose_in_bounds
-from ..metrics import PathMetrics, measure_scenario_path, se2_poses
-from ..world import Scenario, load_scenario, scenario_from_dict
+from ..floor.geometry import as_polygon, pose_collides, pose_in_bounds
+from ..floor.scenario import Scenario, load_scenario, scenario_from_dict
+from ..viz.metrics import PathMetrics, measure_scenario_path, se2_poses
 from .executor import FAIRNESS, FairnessRule
 
 __all__ = [
@@ -124,7 +124,7 @@ PLOT_STEP = 0.05
 #: Bump when the harness changes in a way that invalidates cached results (3: CPU share
 #: and load per run, OMPL's PathSimplifier beside the raw path).
 HARNESS_VERSION = 3
-#: The columns of :class:`segplan.metrics.PathMetrics` in every run's row.
+#: The columns of :class:`segplan.viz.metrics.PathMetrics` in every run's row.
 METRIC_FIELDS = tuple(f.name for f in fields(PathMetrics))
 #: Longest time (s) OMPL's ``PathSimplifier.simplify`` may take on one path.
 SIMPLIFY_SECONDS = 1.0
@@ -160,8 +160,8 @@ def check_seed(seed) -> int:
 class SegmentValidity:
     """Is the robot's segment at ``(x, y, theta)`` free? The planning model of segplan.
 
-    Valid iff :func:`segplan.geometry.pose_in_bounds` holds for the free bounds and
-    :func:`segplan.geometry.pose_collides` is false for every enlarged obstacle. Those
+    Valid iff :func:`segplan.floor.geometry.pose_in_bounds` holds for the free bounds and
+    :func:`segplan.floor.geometry.pose_collides` is false for every enlarged obstacle. Those
     two functions decide every case that is not clear by a wide margin: a polygon whose
     bounding box, grown by ``margin``, misses the segment's bounding box cannot touch the
     segment, and a segment whose end points are inside the free bounds (or outside one of
@@ -271,7 +271,7 @@ def solve_ompl(
         planner status), ``solved`` (an exact solution), ``seconds`` (wall time of
         ``solve``), ``cpu_seconds`` (the CPU time it got), ``checks`` (state validity
         queries), ``ompl_cost`` (OMPL's objective, the rear path length), the
-        :class:`segplan.metrics.PathMetrics` fields (NaN without an exact solution),
+        :class:`segplan.viz.metrics.PathMetrics` fields (NaN without an exact solution),
         ``valid`` (solved and passes the dense oracle) and ``poses`` (``(n, 3)`` list,
         one pose every :data:`PLOT_STEP` m, or None); ``load_before``, ``load_after``
         (1-minute load average around ``solve``); the same measures of the path after
@@ -363,7 +363,7 @@ def _measured(path, sc: Scenario, step: float) -> dict:
     """``ompl_cost``, the metric fields, ``valid`` and ``poses`` of an OMPL path (None: NaN, no poses).
 
     The path is interpolated every ``step / 2`` m, measured by
-    :func:`segplan.metrics.measure_scenario_path` and checked by its dense oracle.
+    :func:`segplan.viz.metrics.measure_scenario_path` and checked by its dense oracle.
     """
     if path is None:
         out = {"ompl_cost": math.nan, **dict.fromkeys(METRIC_FIELDS, math.nan)}

@@ -3,7 +3,7 @@
 On each shipped scenario, OMPL's asymptotically optimal planners RRT*, Informed RRT* and
 BIT* plan for the same robot at fixed time budgets and several seeds, and segplan plans
 with each of its heuristics. Every path, ours and theirs, is measured by the one shared
-function :func:`segplan.metrics.measure_path` (front-wheel length, the paper's cost; rear
+function :func:`segplan.viz.metrics.measure_path` (front-wheel length, the paper's cost; rear
 length; curvature; clearance; the dense shapely collision oracle).
 
 OMPL's side is :mod:`segplan.studies.ompl_runner`: how the peers' problem is made as equal
@@ -64,11 +64,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import world
-from ..api import plan_scenario
-from ..metrics import measure_scenario_path, plan_poses
-from ..path import NoPathError
-from ..world import Robot, Scenario, load_scenario, make_scenario
+from ..floor import scenario as world
+from ..floor.scenario import Robot, Scenario, load_scenario, make_scenario
+from ..planning.api import plan_scenario
+from ..planning.plan import NoPathError
+from ..viz.metrics import measure_scenario_path, plan_poses
 from .executor import FAIRNESS, FairnessRule, Journal, run_jobs
 from .ompl_runner import (
     METRIC_FIELDS,
@@ -133,7 +133,7 @@ def load(name: str | Path) -> Scenario:
 def warm_up() -> float:
     """The process's one-time set-up of segplan (seconds): one plan on a small floor.
 
-    The first plan in a process loads the stored fitted constants (:mod:`segplan.constants`)
+    The first plan in a process loads the stored fitted constants (:mod:`segplan.model.constants`)
     and warms the interpreter's caches, once. It is excluded from the times, like OMPL's
     library load.
     """
@@ -251,7 +251,7 @@ def shipped_scenarios() -> tuple[str, ...]:
     """The study's floors: the shipped scenarios whose obstacles are all convex, as in the paper.
 
     A floor with a non-convex obstacle (``l_shaped_rack``, split into convex pieces by
-    :mod:`segplan.decompose`, beyond the paper) is not part of the comparison with the
+    :mod:`segplan.floor.decompose`, beyond the paper) is not part of the comparison with the
     peers, whose stored runs (``benchmarks/results/peers_ompl.csv``) cover exactly these.
     """
     names = world.shipped_scenarios()

@@ -3,7 +3,7 @@
 The floors are :mod:`segplan.studies.floors` (:func:`floor_groups`): 200 random 20 x 12 m
 floors of each heading kind (``any``, ``natural``), the hard cases, six 160 x 96 m floors
 with 512 obstacles, and a size sweep (:func:`sweep_floors`). Both sides are measured by
-:func:`segplan.metrics.measure_scenario_path` (front-wheel length; the dense oracle).
+:func:`segplan.viz.metrics.measure_scenario_path` (front-wheel length; the dense oracle).
 
 **OMPL** (optional dependency; slow, run once and stored by :func:`run_ompl` in
 :data:`OMPL_CSV`, :data:`OMPL_PATHS`, :data:`OMPL_PROVENANCE`): BIT* on the Dubins space of
@@ -46,10 +46,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..api import PAPER_SHARE, plan_scenario
-from ..metrics import measure_scenario_path, plan_poses
-from ..path import NoPathError
-from ..world import Scenario
+from ..floor.scenario import Scenario
+from ..planning.api import PAPER_SHARE, plan_scenario
+from ..planning.plan import NoPathError
+from ..viz.metrics import measure_scenario_path, plan_poses
 from . import floors as fl
 from . import ompl_runner as om
 from . import peers
@@ -367,7 +367,7 @@ def run_ompl(
         ),
         space="Dubins, radius L / tan(max_steer); validity segplan.studies.ompl_runner.SegmentValidity",
         motion_check_resolution_m=om.RESOLUTION,
-        measured_by="segplan.metrics.measure_scenario_path, samples every 1 cm",
+        measured_by="segplan.viz.metrics.measure_scenario_path, samples every 1 cm",
     )
     before = set(journal.read())
     records = run_jobs(
@@ -491,7 +491,7 @@ def solve_segplan(scenario: Scenario, group: str = "", options: dict | None = No
     if the variant refines, refinement; the first plan on this floor in a warm process,
     see :func:`warm_up`); ``plan_seconds`` the planner's own ``Plan.seconds`` (or the
     ``NoPathError``'s); ``cpu_seconds`` the CPU time of the call. The plan is sampled every
-    ``step`` m and measured by :func:`segplan.metrics.measure_scenario_path`: ``valid`` is
+    ``step`` m and measured by :func:`segplan.viz.metrics.measure_scenario_path`: ``valid`` is
     the dense oracle's verdict, ``front_length`` the measured front-wheel length
     (``plan_cost``: the plan's own LONGD).
     """

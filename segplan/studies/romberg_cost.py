@@ -18,8 +18,8 @@ import time
 
 import numpy as np
 
-from ..cost import exact_values, longd_approx_intrinsic, longd_integrand
-from ..romberg import romberg
+from ..model.cost import exact_values, longd_approx_intrinsic, longd_integrand
+from ..model.romberg import romberg
 from .approx import error_study, sample_domain
 
 __all__ = ["MATCH_RTOLS", "matched_cost_ratios", "matched_cost_study", "romberg_matched", "romberg_work"]
@@ -30,7 +30,7 @@ def romberg_work(d_over_L, phi0, phi1, alpha, rtol: float, min_levels: int = 1):
 
     Section "Approximate computation of cost function" compares [2] with "Romberg
     integration with the same maximum error bound". Romberg's stopping rule
-    (:func:`segplan.romberg.romberg`) is applied to each case alone, from ``min_levels``
+    (:func:`segplan.model.romberg.romberg`) is applied to each case alone, from ``min_levels``
     halvings on (level ``k`` uses ``2**k + 1`` points), so the count is the work that
     bound asks for. :func:`segplan.longd_exact` uses at least 4 levels (17 points).
 

@@ -27,7 +27,7 @@ search. This module adds what those comparisons need and the planner does not co
   or not, segplan's default planner, OMPL's stored runs), which with the point-path lower
   bound brackets the optimum from both sides.
 
-Nothing here plans: the search is :func:`segplan.api.plan_scenario`.
+Nothing here plans: the search is :func:`segplan.planning.api.plan_scenario`.
 """
 
 from __future__ import annotations
@@ -40,12 +40,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..api import plan_scenario
-from ..geometry import pose_segment
-from ..path import NoPathError, Plan
-from ..romberg import romberg
-from ..union import Union
-from ..world import Scenario
+from ..floor.geometry import pose_segment
+from ..floor.scenario import Scenario
+from ..model.romberg import romberg
+from ..model.union import Union
+from ..planning.api import plan_scenario
+from ..planning.plan import NoPathError, Plan
 from .progress import progress
 from .verdicts import PAPER_CLAIMS, Criterion
 
@@ -610,7 +610,7 @@ def best_known_plans(
       shortest exact Dubins solution that the dense collision oracle found valid, over every
       budget and seed, raw and, where stored, after OMPL's ``PathSimplifier``. Reeds-Shepp
       paths reverse, which the robot does not, and are left out. Their length is the
-      front-wheel length measured on the stored path (:func:`segplan.metrics.measure_path`),
+      front-wheel length measured on the stored path (:func:`segplan.viz.metrics.measure_path`),
       the same quantity as a plan's LONGD.
 
     Parameters

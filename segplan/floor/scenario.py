@@ -1,0 +1,581 @@
+"""The robot and its world: the segment robot, convex obstacles, bounds, scenario files.
+
+Sections "Mobile robot modelling" and "Results. Graph-search" of Campoy et al. (1989).
+The robot is the segment A->B of length ``L`` (A: middle of the rear axle, B: middle of
+the front wheel). Its real plan section, the "curved rectangle" of Fig. 2, is modelled
+as the set of points within ``half_width`` of that segment; so the segment is planned
+among obstacles *enlarged off-line* by ``half_width`` ("the processing of the model of
+the surroundings, with obstacles appropriately enlarged, is performed off-line"), and
+the walls of a rectangular world move inwards by ``half_width``. Forward motion only,
+with the steering angle of the front wheel bounded by ``max_steer``: the rear path's
+curvature stays within ``tan(max_steer) / L`` (bicycle model).
+
+Obstacles are simple polygons, ``(k, 2)`` vertex arrays or shapely ``Polygon`` /
+``MultiPolygon`` objects (no holes). The planner sees convex polygons, the paper's
+obstacles: a non-convex one is split into convex pieces by
+:func:`segplan.floor.decompose.convex_pieces` (beyond the paper); ``Scenario.obstacles`` holds
+the pieces, ``Scenario.outlines`` the polygons as given (for drawing and files). Convex
+polygons are their own single piece, stored counter-clockwise.
+
+Scenario files (JSON)
+---------------------
+::
+
+    {"name": "...", "description": "...",            (optional strings)
+     "L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
+     "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
+     "bounds": [xmin, ymin, xmax, ymax],             (or null / absent: no walls)
+     "obstacles": [[[x, y], [x, y], [x, y], ...], ...]}
+
+Lengths in metres. **Angles in files are degrees**: ``theta`` of start and goal and
+``max_steer_deg``; the Python API (``Pose``, ``Robot.max_steer``) uses radians.
+Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width`` 0,
+``max_steer_deg`` 45, ``bounds`` none. Any other key is an error, so is a repeated key.
+Polygons may be given in either orientation and are stored counter-clockwise; nothing
+else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
+``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A vertex that is
+repeated (also a closing copy of the first one) is an error, as are self-intersecting
+and zero-area polygons, a vertex collinear with its neighbours in a convex polygon,
+NaN/Infinity literals and numbers that overflow to infinity.
+
+A pose collides when its segment A->B touches an enlarged obstacle (closed sets:
+touching is a collision); it is out of bounds unless the whole segment lies strictly
+inside the bounds shrunk by ``half_width`` (:attr:`Scenario.free_bounds`). Scenarios
+decide both with :func:`segplan.floor.geometry.pose_conflict`, the planner's own pose test.
+Polygons are validated by :func:`segplan.floor.geometry.check_convex_polygon` (the one
+validator) and enlarged by :func:`segplan.floor.geometry.enlarge_polygon`. Random floors:
+:mod:`segplan.floor.random_floors`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from ..model.pose import Pose, as_pose, check_length
+from .decompose import as_outlines, decompose
+from .geometry import (
+    DEFAULT_MAX_ARC,
+    check_bounds,
+    enlarge_polygon,
+    finite_number,
+    pose_conflict,
+)
+
+__all__ = [
+    "with_clearance",
+    "MIN_LENGTH",
+    "OPTIONAL_KEYS",
+    "REQUIRED_KEYS",
+    "Robot",
+    "Scenario",
+    "ScenarioError",
+    "WORLD_LIMIT",
+    "load_scenario",
+    "loads_scenario",
+    "make_scenario",
+    "save_scenario",
+    "scenario_from_dict",
+]
+#: Scenario coordinates and lengths must not exceed this magnitude (the world's scale,
+#: metres in files); L and a nonzero half_width must be at least MIN_LENGTH (a smaller
+#: half_width would enlarge polygons by less than the spacing of floats near them).
+WORLD_LIMIT = 1e6
+MIN_LENGTH = 1e-6
+
+REQUIRED_KEYS = ("L", "start", "goal", "obstacles")
+OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "bounds")
+
+
+class ScenarioError(ValueError):
+    """A scenario file or scenario description is malformed or infeasible.
+
+    The message names the file (or ``<python>``), and where relevant the key, the
+    obstacle index and the vertex index.
+    """
+
+
+# -- the robot ------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Robot:
+    """The oriented-segment robot (section "Mobile robot modelling", Fig. 2).
+
+    Parameters
+    ----------
+    L : float
+        Length of the segment from the rear-axle middle A to the front wheel B (> 0, m).
+    half_width : float
+        Radius of the robot's plan section around the segment (>= 0, m); obstacles are
+        enlarged by it off-line and the walls move inwards by it. 0: the pure segment.
+    max_steer : float
+        Largest steering angle of the front wheel, radians, in ``(0, pi/2)``.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument, for a non-finite or out-of-range value.
+    """
+
+    L: float
+    half_width: float = 0.0
+    max_steer: float = math.radians(45.0)
+
+    def __post_init__(self):
+        object.__setattr__(self, "L", check_length(self.L, "L"))
+        object.__setattr__(self, "half_width", finite_number(self.half_width, "half_width", minimum=0.0))
+        steer = finite_number(self.max_steer, "max_steer")
+        if not 0.0 < steer < 0.5 * math.pi:
+            raise ValueError(
+                f"max_steer must lie in (0, pi/2) radians, got {steer} ({math.degrees(steer)} deg)"
+            )
+        object.__setattr__(self, "max_steer", steer)
+
+    @property
+    def max_curvature(self) -> float:
+        """Largest curvature of the rear path, ``tan(max_steer) / L`` (bicycle model)."""
+        return math.tan(self.max_steer) / self.L
+
+    @property
+    def min_turning_radius(self) -> float:
+        """Smallest turning radius of the rear point A, ``L / tan(max_steer)``."""
+        return self.L / math.tan(self.max_steer)
+
+
+# -- scenarios ------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class Scenario:
+    """A validated planning problem (build with :func:`make_scenario` or :func:`load_scenario`).
+
+    Attributes
+    ----------
+    robot : Robot
+    start, goal : Pose
+        Rear-axle point and heading, **theta in radians** (files store degrees).
+    bounds : tuple (xmin, ymin, xmax, ymax) or None
+        The walls, or None for an unbounded world.
+    obstacles : tuple of ndarray (k, 2)
+        The convex obstacles, counter-clockwise, read-only: the polygons as given, a
+        non-convex one replaced by its convex pieces (:func:`segplan.floor.decompose.convex_pieces`).
+    enlarged : tuple of ndarray (n, 2)
+        ``obstacles`` enlarged by ``robot.half_width`` (:func:`enlarge_polygon`), the
+        polygons the segment is planned among; read-only.
+    name, description : str
+    path : Path or None
+        The file it was loaded from.
+    outlines : tuple of ndarray (k, 2)
+        The obstacles as given (counter-clockwise, read-only), possibly non-convex; the
+        same arrays as ``obstacles`` when every obstacle is convex. Drawn and saved.
+    outline_of : tuple of int
+        ``outline_of[i]``: the index in ``outlines`` of the piece ``obstacles[i]``.
+    """
+
+    robot: Robot
+    start: Pose
+    goal: Pose
+    bounds: tuple[float, float, float, float] | None
+    obstacles: tuple[np.ndarray, ...]
+    enlarged: tuple[np.ndarray, ...]
+    name: str = ""
+    description: str = ""
+    path: Path | None = field(default=None)
+    outlines: tuple[np.ndarray, ...] = ()
+    outline_of: tuple[int, ...] = ()
+
+    @property
+    def L(self) -> float:
+        """Robot length."""
+        return self.robot.L
+
+    @property
+    def free_bounds(self) -> tuple[float, float, float, float] | None:
+        """The bounds shrunk by ``half_width``: the segment must stay strictly inside."""
+        if self.bounds is None:
+            return None
+        r = self.robot.half_width
+        xmin, ymin, xmax, ymax = self.bounds
+        return (xmin + r, ymin + r, xmax - r, ymax - r)
+
+    def pose_conflict(self, pose) -> str | None:
+        """Why ``pose`` is not free (``"obstacles[i]"`` or ``"bounds"``), or None if it is free.
+
+        Uses :func:`segplan.floor.geometry.pose_conflict`, the planner's own test (separating
+        axes; touching, within the relative tolerance ``TOUCH_RTOL`` = 1e-9, counts), so a
+        scenario that loads has a start and goal the planner accepts.
+        """
+        return pose_conflict(pose, self.robot.L, self.enlarged, self.free_bounds)
+
+    def is_free(self, pose) -> bool:
+        """Is the robot at ``pose`` (radians) clear of every enlarged obstacle and wall?"""
+        return self.pose_conflict(pose) is None
+
+    def to_dict(self) -> dict:
+        """The scenario in file form (plain JSON types; angles in degrees)."""
+        out: dict = {}
+        if self.name:
+            out["name"] = self.name
+        if self.description:
+            out["description"] = self.description
+        out["L"] = self.robot.L
+        out["half_width"] = self.robot.half_width
+        out["max_steer_deg"] = math.degrees(self.robot.max_steer)
+        out["start"] = [self.start.x, self.start.y, math.degrees(self.start.theta)]
+        out["goal"] = [self.goal.x, self.goal.y, math.degrees(self.goal.theta)]
+        out["bounds"] = None if self.bounds is None else list(self.bounds)
+        out["obstacles"] = [p.tolist() for p in self.outlines]
+        return out
+
+    def to_json(self) -> str:
+        """JSON text of :meth:`to_dict`, one obstacle per line; :func:`load_scenario` reads it back."""
+        d = self.to_dict()
+        lines = [
+            f"  {json.dumps(k)}: {json.dumps(v, allow_nan=False)}" for k, v in d.items() if k != "obstacles"
+        ]
+        obs = ",\n".join(f"    {json.dumps(p, allow_nan=False)}" for p in d["obstacles"])
+        lines.append('  "obstacles": [\n' + obs + "\n  ]" if obs else '  "obstacles": []')
+        return "{\n" + ",\n".join(lines) + "\n}\n"
+
+
+def make_scenario(
+    robot: Robot,
+    start,
+    goal,
+    obstacles: Sequence = (),
+    bounds: Sequence[float] | None = None,
+    *,
+    name: str = "",
+    description: str = "",
+    path: Path | None = None,
+    max_arc: float = DEFAULT_MAX_ARC,
+    source: str = "<python>",
+) -> Scenario:
+    """Validate a planning problem and build a :class:`Scenario` (Python API: radians).
+
+    Raises
+    ------
+    ScenarioError
+        Naming ``source``: bad robot parameters, poses, bounds (not a proper rectangle,
+        or narrower than the robot), polygons (see :func:`check_convex_polygon`), or a
+        start or goal that collides with an enlarged obstacle or leaves the free bounds.
+    """
+    if not isinstance(robot, Robot):
+        raise ScenarioError(f"{source}: robot must be a Robot, got {type(robot).__name__}")
+    if not MIN_LENGTH <= robot.L <= WORLD_LIMIT:
+        raise ScenarioError(f"{source}: L={robot.L} is outside [{MIN_LENGTH:g}, {WORLD_LIMIT:g}]")
+    if robot.half_width > WORLD_LIMIT or 0.0 < robot.half_width < MIN_LENGTH:
+        raise ScenarioError(
+            f"{source}: half_width={robot.half_width} must be 0 or within [{MIN_LENGTH:g}, {WORLD_LIMIT:g}]"
+        )
+    try:
+        start_p = as_pose(start, "start")
+        goal_p = as_pose(goal, "goal")
+    except ValueError as exc:
+        raise ScenarioError(f"{source}: {exc}") from None
+    for label, pose in (("start", start_p), ("goal", goal_p)):
+        _check_scale(pose[:2], f"{source}: {label}")
+    if bounds is not None:
+        try:
+            b = check_bounds(bounds)
+        except ValueError as exc:
+            raise ScenarioError(f"{source}: {exc}") from None
+        if min(b[2] - b[0], b[3] - b[1]) <= 2.0 * robot.half_width:
+            raise ScenarioError(f"{source}: bounds {list(b)} leave no room for half_width={robot.half_width}")
+        _check_scale(b, f"{source}: bounds")
+        bounds = b
+    try:
+        items = list(obstacles)
+    except TypeError:
+        raise ScenarioError(
+            f"{source}: obstacles must be a sequence of polygons, got {_brief(obstacles)}"
+        ) from None
+    polys, outlines, outline_of, labels = [], [], [], []
+    for i, item in enumerate(items):
+        where = f"{source}: obstacles[{i}]"
+        try:
+            given = as_outlines(item, where)
+        except ValueError as exc:
+            raise ScenarioError(str(exc)) from None
+        for j, p in enumerate(given):
+            at = where if len(given) == 1 else f"{where} part {j}"
+            try:
+                outline, pieces = decompose(p, where=at)
+            except ValueError as exc:
+                raise ScenarioError(str(exc)) from None
+            if np.abs(outline).max() > WORLD_LIMIT:  # the pieces' vertices are the outline's
+                k = int(np.flatnonzero(np.abs(np.asarray(p, dtype=float)).max(axis=1) > WORLD_LIMIT)[0])
+                raise ScenarioError(f"{at} vertex {k}: coordinates exceed +-{WORLD_LIMIT:g}")
+            for q in (outline, *pieces):  # a convex outline is its own piece, the same array
+                q.flags.writeable = False
+            outline_of.extend([len(outlines)] * len(pieces))
+            label = f"obstacles[{i}]" + ("" if len(given) == 1 else f" part {j}")
+            labels.extend(
+                label if len(pieces) == 1 else f"{label} (its convex piece {n})" for n in range(len(pieces))
+            )
+            outlines.append(outline)
+            polys.extend(pieces)
+    enlarged = []
+    for p in polys:
+        e = enlarge_polygon(p, robot.half_width, max_arc)
+        e.flags.writeable = False
+        enlarged.append(e)
+    sc = Scenario(
+        robot, start_p, goal_p, bounds, tuple(polys), tuple(enlarged), name, description, path,
+        tuple(outlines), tuple(outline_of),
+    )  # fmt: skip
+    for label, pose in (("start", start_p), ("goal", goal_p)):
+        conflict = sc.pose_conflict(pose)
+        if conflict == "bounds":
+            raise ScenarioError(
+                f"{source}: {label} pose {_show(pose)} is out of bounds: its segment of length L={robot.L} "
+                f"must lie strictly inside the bounds shrunk by half_width, {list(sc.free_bounds)}"
+            )
+        if conflict is not None:
+            conflict = labels[int(conflict[len("obstacles[") : -1])]  # the obstacle as given
+            raise ScenarioError(
+                f"{source}: {label} pose {_show(pose)} collides with {conflict} "
+                f"enlarged by half_width={robot.half_width} (segment of length L={robot.L})"
+            )
+    return sc
+
+
+def _check_scale(values, where: str) -> None:
+    if any(abs(x) > WORLD_LIMIT for x in values):
+        raise ScenarioError(f"{where}: coordinates {list(values)} exceed +-{WORLD_LIMIT:g}")
+
+
+def _show(p: Pose) -> str:
+    return f"(x={p.x:g}, y={p.y:g}, theta={math.degrees(p.theta):g} deg)"
+
+
+# -- files ----------------------------------------------------------------------------
+def _reject_constant(token: str):
+    raise _JSONValueError(f"non-finite literal {token} is not allowed (JSON has no NaN or Infinity)")
+
+
+class _JSONValueError(ValueError):
+    pass
+
+
+def _no_duplicates(pairs):
+    seen = {}
+    for k, v in pairs:
+        if k in seen:
+            raise _JSONValueError(f"key {k!r} is repeated")
+        seen[k] = v
+    return seen
+
+
+def _number(value, where: str) -> float:
+    """A finite float from a JSON number (not a bool, not overflowing)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ScenarioError(f"{where} must be a number, got {_brief(value)}")
+    try:
+        x = float(value)
+    except OverflowError:
+        raise ScenarioError(f"{where} is too large for a float") from None
+    if not math.isfinite(x):
+        raise ScenarioError(f"{where} must be finite, got {x}")
+    return x
+
+
+def _numbers(value, n: int | None, where: str, names: str) -> list[float]:
+    if not isinstance(value, list):
+        raise ScenarioError(f"{where} must be a list {names}, got {_brief(value)}")
+    if n is not None and len(value) != n:
+        raise ScenarioError(f"{where} must have {n} numbers {names}, got {len(value)} items")
+    return [_number(x, f"{where}[{i}]") for i, x in enumerate(value)]
+
+
+def _brief(value) -> str:
+    """Short description of a JSON value for error messages (no full repr of containers)."""
+    if isinstance(value, list):
+        return f"a list of {len(value)} items"
+    if isinstance(value, dict):
+        return f"an object with {len(value)} keys"
+    if value is None:
+        return "null"
+    text = repr(value[:40] if isinstance(value, str) else value)
+    return f"{type(value).__name__} {text if len(text) <= 40 else text[:37] + '...'}"
+
+
+def scenario_from_dict(data, source: str = "<dict>", path: Path | None = None) -> Scenario:
+    """Validate a scenario in file form (a dict as parsed from JSON; angles in degrees).
+
+    Raises
+    ------
+    ScenarioError
+        Naming ``source`` and the key, obstacle and vertex at fault.
+    """
+    if not isinstance(data, dict):
+        raise ScenarioError(f"{source}: the top level must be a JSON object, got {_brief(data)}")
+    unknown = [k for k in data if k not in REQUIRED_KEYS + OPTIONAL_KEYS]
+    if unknown:
+        raise ScenarioError(
+            f"{source}: unknown key {unknown[0][:40]!r}; "
+            f"allowed keys: {', '.join(REQUIRED_KEYS + OPTIONAL_KEYS)}"
+        )
+    missing = [k for k in REQUIRED_KEYS if k not in data]
+    if missing:
+        raise ScenarioError(f"{source}: missing key {missing[0]!r} (required: {', '.join(REQUIRED_KEYS)})")
+    text = {}
+    for key in ("name", "description"):
+        value = data.get(key, "")
+        if not isinstance(value, str):
+            raise ScenarioError(f"{source}: {key} must be a string, got {_brief(value)}")
+        text[key] = value
+    L = _number(data["L"], f"{source}: L")
+    half_width = _number(data.get("half_width", 0.0), f"{source}: half_width")
+    steer = _number(data.get("max_steer_deg", 45.0), f"{source}: max_steer_deg")
+    if not 0.0 < steer < 90.0:
+        raise ScenarioError(f"{source}: max_steer_deg must lie in (0, 90) degrees, got {steer}")
+    try:
+        robot = Robot(L, half_width, math.radians(steer))
+    except ValueError as exc:
+        raise ScenarioError(f"{source}: {exc}") from None
+    poses = {}
+    for key in ("start", "goal"):
+        x, y, th = _numbers(data[key], 3, f"{source}: {key}", "[x, y, theta_deg]")
+        poses[key] = Pose(x, y, math.radians(th))
+    bounds = data.get("bounds")
+    if bounds is not None:
+        bounds = _numbers(bounds, 4, f"{source}: bounds", "[xmin, ymin, xmax, ymax]")
+    obstacles = data["obstacles"]
+    if not isinstance(obstacles, list):
+        raise ScenarioError(f"{source}: obstacles must be a list of polygons, got {_brief(obstacles)}")
+    polys = []
+    for i, poly in enumerate(obstacles):
+        where = f"{source}: obstacles[{i}]"
+        if not isinstance(poly, list):
+            raise ScenarioError(f"{where} must be a list of [x, y] vertices, got {_brief(poly)}")
+        polys.append([_numbers(vtx, 2, f"{where} vertex {j}", "[x, y]") for j, vtx in enumerate(poly)])
+    return make_scenario(
+        robot,
+        poses["start"],
+        poses["goal"],
+        polys,
+        bounds,
+        name=text["name"] or (path.stem if path is not None else ""),
+        description=text["description"],
+        path=path,
+        source=source,
+    )
+
+
+def loads_scenario(text: str | bytes, source: str = "<string>", path: Path | None = None) -> Scenario:
+    """Parse and validate scenario JSON text (UTF-8 if bytes). See :func:`load_scenario`."""
+    if isinstance(text, bytes | bytearray):
+        try:
+            text = bytes(text).decode("utf-8-sig")
+        except UnicodeDecodeError as exc:
+            raise ScenarioError(f"{source}: not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    if not text.strip():
+        raise ScenarioError(f"{source}: the file is empty")
+    try:
+        data = json.loads(text, parse_constant=_reject_constant, object_pairs_hook=_no_duplicates)
+    except json.JSONDecodeError as exc:
+        raise ScenarioError(
+            f"{source}: invalid JSON: {exc.msg} (line {exc.lineno}, column {exc.colno})"
+        ) from None
+    except RecursionError:
+        raise ScenarioError(f"{source}: invalid JSON: nested too deeply") from None
+    except ValueError as exc:  # our hooks, or an integer literal with too many digits
+        raise ScenarioError(f"{source}: invalid JSON: {exc}") from None
+    return scenario_from_dict(data, source, path)
+
+
+def load_scenario(path) -> Scenario:
+    """Load and validate a scenario file (JSON; angles in degrees, see the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        A scenario file, or the bare name of a shipped scenario (``"fig5_example1"``, see
+        :func:`shipped_scenarios`), read from the installed package with
+        :mod:`importlib.resources`.
+
+    Returns
+    -------
+    Scenario
+        Start and goal headings converted to radians; obstacles enlarged off-line.
+
+    Raises
+    ------
+    ScenarioError
+        For any unreadable, malformed or infeasible file; the message names the file and,
+        where relevant, the key, obstacle index and vertex index.
+    """
+    p = Path(path)
+    if isinstance(path, str) and not p.suffix and p.name == path and not p.exists():
+        shipped = _shipped_files()
+        if path not in shipped:
+            raise ScenarioError(
+                f"{path!r} is neither a file nor a shipped scenario (one of {', '.join(sorted(shipped))})"
+            )
+        relative, resource = shipped[path]
+        return loads_scenario(resource.read_bytes(), source=f"segplan/scenarios/{relative}")
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise ScenarioError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    return loads_scenario(raw, source=str(p), path=p)
+
+
+#: Sub-folder of the shipped scenarios for floors beyond the paper (non-convex obstacles,
+#: issue 14): shipped and loadable by name like the others; the paper's chapters, which read
+#: the top folder ``scenarios/*.json``, do not see them.
+BEYOND_THE_PAPER = "beyond_the_paper"
+
+
+def _shipped_files() -> dict:
+    """``{name: (path relative to scenarios/, resource)}`` of every shipped scenario."""
+    folder = resources.files("segplan") / "scenarios"
+    out = {}
+    for sub, prefix in ((folder, ""), (folder / BEYOND_THE_PAPER, f"{BEYOND_THE_PAPER}/")):
+        if sub.is_dir():
+            for f in sub.iterdir():
+                if f.name.endswith(".json"):
+                    out[f.name[: -len(".json")]] = (prefix + f.name, f)
+    return out
+
+
+def shipped_scenarios() -> tuple[str, ...]:
+    """Names of the scenarios shipped with segplan (package data), sorted.
+
+    ``load_scenario(name)`` reads one of them; in a clone of the repository they are the
+    files of ``scenarios/`` and ``scenarios/beyond_the_paper/`` (non-convex obstacles),
+    which ``segplan/scenarios`` links to.
+    """
+    return tuple(sorted(_shipped_files()))
+
+
+def save_scenario(scenario: Scenario, path) -> Path:
+    """Write ``scenario.to_json()`` to ``path`` and return the path."""
+    p = Path(path)
+    p.write_text(scenario.to_json(), encoding="utf-8")
+    return p
+
+
+def with_clearance(scenario: Scenario, clearance: float) -> Scenario:
+    """The scenario with its robot's ``half_width`` grown by ``clearance`` (m): the safety margin.
+
+    Raises
+    ------
+    ValueError
+        (``segplan.ScenarioError``) If the start or goal is nearer than ``clearance`` to an
+        enlarged obstacle or wall.
+    """
+    robot = scenario.robot
+    grown = Robot(robot.L, robot.half_width + float(clearance), robot.max_steer)
+    try:
+        return make_scenario(
+            grown, scenario.start, scenario.goal, scenario.outlines, scenario.bounds,
+            name=scenario.name, description=scenario.description, path=scenario.path,
+            source=f"clearance={clearance:g}",
+        )  # fmt: skip
+    except ScenarioError as exc:
+        raise ScenarioError(f"{exc} (clearance {clearance:g} m beyond half_width)") from None

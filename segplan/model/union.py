@@ -1,0 +1,209 @@
+"""The union of two nodes: a cubic in an alpha reference system.
+
+Section "Generation of the trajectory of union between two nodes": the rear-axle point A
+follows ``y = f(x)``, the unique cubic that matches both positions and both headings in a
+given alpha reference system. With ``X = d cos(alpha)``, ``t = tan(alpha)`` and the end
+slopes relative to the chord ``mbar_i = tan(phi_i + alpha) - tan(alpha)`` (the paper's
+"m bar"), the cubic is the chord plus a Hermite bump that vanishes at both ends::
+
+    f(x) = t x + X [mbar0 h10(x/X) + mbar1 h11(x/X)],
+    h10(s) = s^3 - 2 s^2 + s,   h11(s) = s^3 - s^2,
+
+that is ``f(x) = c1 x + c2 x^2 + c3 x^3`` with ``c1 = tan(phi0 + alpha)``,
+``c2 = -(2 mbar0 + mbar1) / X`` and ``c3 = (mbar0 + mbar1) / X^2``.
+
+The front wheel B is ``A + L (1, f') / sqrt(1 + f'^2)`` (the robot is tangent to the
+rear path: "the robot orientation ... is always tangent to trajectories").
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from .pose import Pose, as_pose, check_alpha, check_length, intrinsic
+
+__all__ = ["Union", "chord_slopes", "cubic_coefficients"]
+
+
+def chord_slopes(phi0, phi1, alpha):
+    """End slopes relative to the chord, the paper's ``mbar_i = m_i - tan(alpha)``.
+
+    Vectorised over all arguments. ``m_i = tan(phi_i + alpha)`` is the slope of the
+    heading in the alpha frame; the caller keeps ``alpha`` inside the feasible interval.
+    """
+    t = np.tan(alpha)
+    return np.tan(np.add(phi0, alpha)) - t, np.tan(np.add(phi1, alpha)) - t
+
+
+def cubic_coefficients(d, phi0, phi1, alpha):
+    """Span and coefficients of the union's cubic in the alpha frame (vectorised).
+
+    Returns
+    -------
+    X, c1, c2, c3 : float or ndarray
+        ``f(x) = c1 x + c2 x^2 + c3 x^3`` on ``[0, X]``, ``X = d cos(alpha)``.
+    """
+    X = np.multiply(d, np.cos(alpha))
+    m0, m1 = chord_slopes(phi0, phi1, alpha)
+    c1 = np.tan(alpha) + m0  # f'(0) = tan(phi0 + alpha)
+    c2 = -(2.0 * m0 + m1) / X  # from f(X) = X tan(alpha), f'(X) = tan(phi1 + alpha)
+    c3 = (m0 + m1) / X**2
+    return X, c1, c2, c3
+
+
+class Union:
+    """The cubic union of two nodes in the alpha reference system (immutable).
+
+    Parameters
+    ----------
+    p0, p1 : Pose or sequence (x, y, theta)
+        Start and end nodes: rear-axle point and heading (radians).
+    alpha : float
+        Angle of the chord in the reference system (radians); the frame's x-axis is at
+        world angle ``psi - alpha`` with ``psi`` the chord's angle.
+    L : float
+        Robot length, rear axle to front wheel (> 0).
+
+    Raises
+    ------
+    ValueError
+        Coincident points, non-finite input, ``L <= 0``, or ``alpha`` outside the
+        interval where the cubic exists (``|alpha| < pi/2``, ``|phi_i + alpha| < pi/2``);
+        the message names the quantity.
+
+    Notes
+    -----
+    Section "Description of the method of interpolation". The frame coordinates ``x`` run
+    over ``[0, x_end]``; every sampling method returns world coordinates.
+    """
+
+    __slots__ = ("p0", "p1", "alpha", "L", "d", "psi", "phi0", "phi1", "x_end", "coefficients")
+
+    def __init__(self, p0: Sequence[float] | Pose, p1: Sequence[float] | Pose, alpha: float, L: float):
+        ends = (as_pose(p0, "p0"), as_pose(p1, "p1"))
+        L = check_length(L)
+        geo = intrinsic(*ends)
+        alpha = check_alpha(alpha, geo.phi0, geo.phi1)
+        X, c1, c2, c3 = cubic_coefficients(geo.d, geo.phi0, geo.phi1, alpha)
+        for name, value in zip(
+            ("p0", "p1", "alpha", "L", "d", "psi", "phi0", "phi1", "x_end", "coefficients"),
+            (*ends, alpha, L, *geo, float(X), (0.0, float(c1), float(c2), float(c3))),
+            strict=True,
+        ):
+            object.__setattr__(self, name, value)
+
+    @classmethod
+    def from_intrinsic(
+        cls, p0: Pose, p1: Pose, alpha: float, L: float, d: float, psi: float, phi0: float, phi1: float
+    ) -> Union:
+        """Build a union from parameters the caller has already validated (no checks).
+
+        A fast path for the planner, which builds thousands of unions and has computed
+        the intrinsic parameters (``segplan.model.pose.intrinsic(p0, p1)``) and checked
+        ``alpha`` and ``L`` itself. Equal to ``Union(p0, p1, alpha, L)`` up to rounding
+        (scalar ``math`` instead of numpy). Added for issue 3 (search speed).
+        """
+        t = math.tan(alpha)
+        m0 = math.tan(phi0 + alpha) - t  # mbar0
+        m1 = math.tan(phi1 + alpha) - t  # mbar1
+        X = d * math.cos(alpha)
+        coefficients = (0.0, t + m0, -(2.0 * m0 + m1) / X, (m0 + m1) / (X * X))
+        self = object.__new__(cls)
+        for name, value in zip(
+            ("p0", "p1", "alpha", "L", "d", "psi", "phi0", "phi1", "x_end", "coefficients"),
+            (
+                Pose(*p0),
+                Pose(*p1),
+                float(alpha),
+                float(L),
+                float(d),
+                float(psi),
+                float(phi0),
+                float(phi1),
+                X,
+                coefficients,
+            ),
+            strict=True,
+        ):
+            object.__setattr__(self, name, value)
+        return self
+
+    def __setattr__(self, name, value):
+        raise AttributeError("Union is immutable")
+
+    def __repr__(self) -> str:
+        return f"Union(p0={tuple(self.p0)}, p1={tuple(self.p1)}, alpha={self.alpha:.6g}, L={self.L:.6g})"
+
+    # -- the cubic in its own frame ------------------------------------------------
+    @property
+    def frame_angle(self) -> float:
+        """World angle of the alpha frame's x-axis, ``psi - alpha``."""
+        return self.psi - self.alpha
+
+    def f(self, x):
+        """Rear-path ordinate ``f(x)`` in the alpha frame."""
+        _, c1, c2, c3 = self.coefficients
+        x = np.asarray(x, dtype=float)
+        return ((c3 * x + c2) * x + c1) * x
+
+    def slope(self, x):
+        """``f'(x)`` in the alpha frame."""
+        _, c1, c2, c3 = self.coefficients
+        x = np.asarray(x, dtype=float)
+        return (3.0 * c3 * x + 2.0 * c2) * x + c1
+
+    def second_derivative(self, x):
+        """``f''(x)`` in the alpha frame."""
+        _, _, c2, c3 = self.coefficients
+        return 6.0 * c3 * np.asarray(x, dtype=float) + 2.0 * c2
+
+    def curvature(self, x):
+        """Signed curvature of the rear path, ``f'' / (1 + f'^2)^(3/2)`` (1/length)."""
+        return self.second_derivative(x) / (1.0 + self.slope(x) ** 2) ** 1.5
+
+    def max_curvature(self) -> float:
+        """Largest ``|curvature|`` of the rear path over the union, found exactly.
+
+        Interior extrema solve ``f''' (1 + f'^2) - 3 f' f''^2 = 0``, a quartic in x.
+        """
+        _, c1, c2, c3 = self.coefficients
+        p1 = np.polynomial.Polynomial([c1, 2 * c2, 3 * c3])
+        p2 = np.polynomial.Polynomial([2 * c2, 6 * c3])
+        crit = 6 * c3 * (1 + p1**2) - 3 * p1 * p2**2
+        xs = [0.0, self.x_end]
+        if np.any(crit.coef != 0):
+            roots = crit.roots()
+            xs += [r.real for r in roots if abs(r.imag) < 1e-9 and 0.0 < r.real < self.x_end]
+        return float(np.max(np.abs(self.curvature(np.array(xs)))))
+
+    # -- world coordinates ---------------------------------------------------------
+    def xs(self, n: int = 101) -> np.ndarray:
+        """``n >= 2`` equally spaced frame abscissae over ``[0, x_end]``."""
+        if int(n) != n or n < 2:
+            raise ValueError(f"n must be an integer >= 2, got {n!r}")
+        return np.linspace(0.0, self.x_end, int(n))
+
+    def to_world(self, x, y) -> np.ndarray:
+        """Map alpha-frame coordinates to world coordinates, ``(..., 2)``."""
+        c, s = math.cos(self.frame_angle), math.sin(self.frame_angle)
+        x = np.asarray(x, dtype=float)
+        y = np.asarray(y, dtype=float)
+        return np.stack((self.p0.x + c * x - s * y, self.p0.y + s * x + c * y), axis=-1)
+
+    def heading(self, x):
+        """World heading of the robot (A->B) at frame abscissa ``x``."""
+        return self.frame_angle + np.arctan(self.slope(x))
+
+    def rear(self, n: int = 101) -> np.ndarray:
+        """``(n, 2)`` world samples of the rear-axle path A."""
+        x = self.xs(n)
+        return self.to_world(x, self.f(x))
+
+    def front(self, n: int = 101) -> np.ndarray:
+        """``(n, 2)`` world samples of the front-wheel path B = A + L (cos h, sin h)."""
+        x = self.xs(n)
+        h = self.heading(x)
+        return self.to_world(x, self.f(x)) + self.L * np.stack((np.cos(h), np.sin(h)), axis=-1)

@@ -1,0 +1,3 @@
+"""What every planner shares: validity, links, plans, Dubins bound, refinement, the entry points."""
+
+__all__: list[str] = []

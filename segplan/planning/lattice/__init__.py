@@ -1,0 +1,3 @@
+"""Beyond the paper: the lattice planner of cubic-union primitives and its helpers."""
+
+__all__: list[str] = []

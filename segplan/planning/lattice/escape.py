@@ -1,0 +1,266 @@
+"""Tight arcs out of the start and into the goal: the lattice planner's way out of a corner.
+
+Beyond the paper (issue 12). The lattice's tightest primitives turn at about ``1.12 R``
+(their end points must lie on the lattice, :mod:`segplan.planning.lattice.primitives`); a start facing a
+wall a few decimetres away may leave room only for a circle closer to ``R = L /
+tan(max_steer)``, and then every lattice state around the start is blocked. A chain of
+short symmetric unions along a circle turns much tighter: a union that turns by
+``STEP`` (11.25 deg) peaks less than 1 % above the circle's curvature, so the chain keeps
+the steering limit on a circle of radius :data:`RADIUS_FACTORS` ``x R``.
+
+:func:`tight_arcs` gives such chains out of a pose (to the left and to the right, every
+:data:`TURNS` reached while every union is free) or into it (driving forwards, ending at
+the pose). :func:`escape_pairs` orders the combinations of a start arc and a goal arc
+(either may be empty) by their cost plus the Dubins length between the inner poses;
+:mod:`segplan.planning.lattice.search` searches again (at its first resolution) between the inner poses of
+each in turn when its search runs out of states, and puts the arcs around the plan it finds.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+from ...model.pose import Pose, arc_end, intrinsic_interval
+from ...model.union import Union
+from ..dubins import dubins_length_scalar
+from ..plan import NoPathError, union_longd, unions_longd
+
+__all__ = [
+    "IMPROVE_GAP",
+    "MAX_ESCAPES",
+    "RADIUS_FACTORS",
+    "STEP",
+    "TURNS",
+    "Arc",
+    "escape_pairs",
+    "escape_search",
+    "improve_with_arcs",
+    "tight_arcs",
+]
+
+#: Turn of one union of an arc (radians).
+STEP = math.radians(11.25)
+#: Turns (radians) at which an arc's end is offered, while its unions stay free.
+TURNS = tuple(math.radians(d) for d in (45.0, 90.0, 135.0, 180.0, 225.0, 270.0))
+#: Radii tried (times ``R``): the smallest whose union keeps the steering limit is used.
+RADIUS_FACTORS = (1.01, 1.03, 1.06, 1.1)
+
+
+@dataclass(frozen=True)
+class Arc:
+    """A chain of unions along a circle: ``unions`` in driving order, from ``first`` to ``last``.
+
+    ``inner`` is the pose the rest of the plan joins: ``last`` for an arc out of the start,
+    ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1] (the first's
+    times their number: the same to rounding).
+    """
+
+    unions: tuple
+    first: Pose
+    last: Pose
+    cost: float
+    into: bool
+
+    @property
+    def inner(self) -> Pose:
+        return self.first if self.into else self.last
+
+
+def _circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
+    """:func:`segplan.model.pose.arc_end` of ``p`` as a Pose, its heading in ``[-pi, pi]``."""
+    x, y, th = arc_end(p.x, p.y, p.theta, rho, side, turn)
+    return Pose(x, y, math.remainder(th, 2 * math.pi))
+
+
+def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:
+    """Free arcs out of ``pose`` (``into=False``) or into it (``into=True``), both sides.
+
+    Parameters
+    ----------
+    ws : segplan.planning.validity.Workspace
+        The certified tests (free, in bounds, steering limit) of every union.
+    links : segplan.planning.links.LinkModel
+        Makes the unions (optimal reference system, steering fallback).
+    pose : segplan.Pose
+    R : float
+        The minimum turning radius.
+    into : bool
+        Arcs that end at ``pose`` (the goal side) rather than start there.
+
+    Returns
+    -------
+    list of Arc
+        One per side and per turn of :data:`TURNS` reached with every union free.
+    """
+    p = Pose(*pose)
+    out = []
+    per = [int(round(t / STEP)) for t in TURNS]
+    for side in (1, -1):
+        rho = None
+        for f in RADIUS_FACTORS:  # the shape is the same all along: the first union decides
+            a, b = (
+                (_circle_pose(p, f * R, side, -STEP), p) if into else (p, _circle_pose(p, f * R, side, STEP))
+            )
+            u = links.union(a, b)
+            if u is not None and ws.curvature_ok(u):
+                rho = f * R
+                break
+        if rho is None:
+            continue
+        unions, cost, cur = [], 0.0, p
+        u1 = piece = None  # the first union and its LONGD: every later one is congruent
+        for k in range(1, per[-1] + 1):
+            nxt = _circle_pose(p, rho, side, -k * STEP if into else k * STEP)
+            a, b = (nxt, cur) if into else (cur, nxt)
+            geo = None if u1 is None else intrinsic_interval(a, b)
+            if geo is not None and geo[4] < u1.alpha < geo[5]:  # its frame, moved along
+                d, psi, phi0, phi1, _, _ = geo
+                u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
+            else:
+                u = links.union(a, b)
+            if u is None or not ws.union_free(u):
+                break
+            if u1 is None:
+                u1, piece = u, union_longd(u)
+            unions.append(u)
+            cost += piece
+            cur = nxt
+            if k in per:
+                chain = tuple(reversed(unions)) if into else tuple(unions)
+                first, last = (cur, p) if into else (p, cur)
+                out.append(Arc(chain, first, last, cost, into))
+    return out
+
+
+def escape_pairs(starts: list[Arc], goals: list[Arc], start, goal, R: float) -> list[tuple]:
+    """``(estimate, start_arc or None, goal_arc or None)`` for every combination but the
+    empty one, cheapest first by the estimate: the arcs' costs plus the Dubins length
+    (radius ``R``) between their inner poses."""
+    pairs = []
+    for a in (None, *starts):
+        for b in (None, *goals):
+            if a is None and b is None:
+                continue
+            p0 = a.inner if a else Pose(*start)
+            p1 = b.inner if b else Pose(*goal)
+            est = (a.cost if a else 0.0) + (b.cost if b else 0.0) + dubins_length_scalar(*p0, *p1, R)
+            pairs.append((est, len(pairs), a, b))
+    pairs.sort(key=lambda t: t[:2])
+    return [(est, a, b) for est, _, a, b in pairs]
+
+
+#: At most this many searches between the inner poses of arc pairs.
+MAX_ESCAPES = 16
+
+
+def escape_search(scenario, ws, exc, search, max_expansions: int, deadline: float, t0: float):
+    """Search again between the inner poses of tight arcs (:func:`escape_pairs`).
+
+    Parameters
+    ----------
+    scenario : segplan.Scenario
+    ws : segplan.planning.validity.Workspace
+        The scenario's certified tests.
+    exc : NoPathError
+        The failure of the search between the start and the goal; re-raised (with the
+        expansions and the time of every try added) if no pair leads to a plan. Its
+        ``escapable``: ``"both"`` (the lattice ran out of states: arcs at both ends) or
+        ``"goal"`` (the goal looked enclosed: arcs into the goal only).
+    search : callable
+        ``search(scenario, max_expansions, time_limit) -> Plan`` (raises NoPathError).
+    max_expansions, deadline, t0 : int, float, float
+        The limits of the whole call: expansions (the failed search's count), the time
+        at which to stop, and when the call began.
+
+    Returns
+    -------
+    segplan.Plan
+        The arcs around the plan between their inner poses; ``kinds`` ``"arc"`` for the
+        arcs' nodes (the start stays ``"start"``, the goal ``"goal"``).
+    """
+    from ..links import LinkModel
+
+    links = LinkModel(ws)
+    R = scenario.robot.min_turning_radius
+    starts = tight_arcs(ws, links, scenario.start, R) if exc.escapable == "both" else []
+    goals = tight_arcs(ws, links, scenario.goal, R, into=True)
+    used = exc.expanded
+    for _, a, b in escape_pairs(starts, goals, scenario.start, scenario.goal, R)[:MAX_ESCAPES]:
+        left = deadline - time.perf_counter()
+        if used >= max_expansions or left <= 0:
+            break
+        sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
+        try:
+            inner = search(sub, max_expansions - used, left)
+        except NoPathError as e:
+            used += e.expanded
+            continue
+        return _join(scenario, a, inner, b, used + inner.expanded, t0)
+    exc.expanded = used
+    exc.seconds = time.perf_counter() - t0
+    raise exc
+
+
+#: A plan is worth improving by tight arcs when it costs more than this many times the
+#: Dubins length of its ends (a lower bound's stand-in).
+IMPROVE_GAP = 1.3
+
+
+def improve_with_arcs(scenario, ws, plan, t0: float):
+    """A cheaper plan through tight arcs at its ends, or ``plan`` itself.
+
+    The lattice cannot follow a circle tighter than its primitives; where the best route
+    turns at nearly ``R`` next to the start or the goal (a tight turn under an obstacle),
+    its plan goes the long way round. Arcs (:func:`tight_arcs`) at either end are joined by
+    the paper's direct union between their inner poses, for every pair whose estimate
+    (:func:`escape_pairs`) beats the plan; the cheapest free plan wins. Tried only when
+    ``plan.cost`` exceeds :data:`IMPROVE_GAP` times the Dubins length of the ends (a
+    search between the arcs, tried too, cost more time than it won length).
+    """
+    from ..links import LinkModel
+
+    R = scenario.robot.min_turning_radius
+    s, g = Pose(*scenario.start), Pose(*scenario.goal)
+    if not plan.cost > IMPROVE_GAP * dubins_length_scalar(*s, *g, R):
+        return plan
+    links = LinkModel(ws)
+    pairs = escape_pairs(tight_arcs(ws, links, s, R), tight_arcs(ws, links, g, R, into=True), s, g, R)
+    best = plan
+    for est, a, b in pairs:
+        if est >= best.cost:
+            break  # ordered by this estimate: no later pair can win
+        u = links.union(a.inner if a else s, b.inner if b else g)
+        if u is not None and ws.union_free(u):
+            cand = _join(scenario, a, (u,), b, plan.expanded, t0, plan)
+            if cand.cost < best.cost:
+                best = cand
+    return best
+
+
+def _join(scenario, a, middle, b, expanded: int, t0: float, template=None):
+    """The plan of arc ``a`` (or None), ``middle`` (a Plan, or a tuple of unions made in
+    the frame of ``template``'s plan), arc ``b`` (or None)."""
+    front = a.unions if a else ()
+    back = b.unions if b else ()
+    direct = isinstance(middle, tuple)
+    inner = middle if direct else middle.unions
+    kinds = ["start"] + ["arc"] * len(front) + (["goal"] * len(inner) if direct else list(middle.kinds[1:]))
+    kinds += ["arc"] * len(back)
+    if back:
+        kinds[len(front) + len(inner)] = "arc"  # the arc's first node
+    kinds[-1] = "goal"
+    unions = front + tuple(inner) + back
+    ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
+    cost = ends + unions_longd(inner)  # the arcs' LONGD is known
+    return replace(
+        template if direct else middle,
+        nodes=(Pose(*scenario.start),) + tuple(u.p1 for u in unions),
+        unions=unions,
+        cost=cost,
+        search_cost=cost if direct else middle.search_cost + ends,
+        expanded=expanded,
+        seconds=time.perf_counter() - t0,
+        kinds=tuple(kinds),
+    )

@@ -1,0 +1,644 @@
+"""Motion primitives out of cubic unions: short unions between the states of a lattice.
+
+Beyond the paper (issue 12). A symmetric cubic union that turns the robot by a small
+angle is close to a circular arc (turning by 30 deg its curvature peaks about 3.5 % above
+the circle's), so chains of short unions follow a circle close to the minimum turning
+radius ``R = L / tan(max_steer)``, which one long union cannot do (chapter 8).
+
+The lattice (:class:`PrimitiveSet`) has square cells of side ``resolution`` and the 16
+*grid-aligned* headings of the vectors ``(1, 0), (2, 1), (1, 1), (1, 2), (0, 1), ...``
+(0, 26.6, 45, 63.4, 90 deg, ...), so that a straight step along any heading ends on a
+lattice point. A primitive joins the state ``(0, 0, k)`` to a state ``(i, j, k')`` of the
+lattice by the paper's cubic union (section III) in its optimal reference system
+(:func:`segplan.model.frame.heuristic_alpha`; the frame of least peak curvature when that one
+breaks the steering limit); it is kept only if its rear path's curvature stays within
+``tan(max_steer) / L`` everywhere (exact maximum, :meth:`segplan.Union.max_curvature`).
+Its cost is the exact LONGD, formula [1] (Romberg).
+
+Which primitives: from each heading, the unit straight step, and for every turn by one or
+two heading steps (about 22.5 or 45 deg) the cheapest lattice end points, fewest first,
+skipping one whose end state a chain of at most three kept primitives already reaches
+at no more than ``1 + PRUNE`` times its cost (the pruning of Pivtoraiko and Kelly's
+state lattices).
+
+The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg (exact in integers). A
+union's shape and cost do not change under a rigid motion, so the set is made once per
+``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in an explicit least-recently-
+used cache) and reused by every plan. The sets of the default lattice (45 deg steering,
+resolutions ``L / 8`` and ``L / 16``) are package data for a unit ``L``
+(``primitives.npz``, written with its provenance by ``python -m segplan.fit``, which
+recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a fresh
+process does not spend seconds computing them.
+
+The selection is the same on every processor. Many candidates tie exactly (a turn and its
+mirror image about a diagonal or an axis of the lattice have the same chord, turn and
+LONGD), and their estimates then differ only in the last bits, which vectorised maths and
+BLAS kernels round differently from one processor to the next (up to 5e-16 relative,
+measured between OpenBLAS's Haswell, SkylakeX, Sandybridge, Prescott and Nehalem kernels
+and numpy's AVX-512, AVX2 and baseline code paths). Candidates are therefore ranked by
+their estimate rounded to :data:`RANK_DECIMALS` decimals of ``L``, ties broken by their
+integers ``(h0, h1, i, j)`` (:func:`_rank`). Every other decision of the selection (a
+chain's cost against its budget, a peak curvature against the limit, a sample against the
+reach bound) keeps a margin ten orders of magnitude above the rounding differences on the
+stored sets (:func:`selection_margins`; ``tests/test_primitives_data.py``).
+
+Every primitive also carries points of its swept segment (rear point A, front wheel B and
+points between them, at abscissae along the union) relative to its start, and ``delta``:
+every point of the swept segment lies within ``delta`` of one of them. A planner screens
+a primitive by these points (:mod:`segplan.planning.lattice.search`).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import weakref
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...model.cost import longd_exact_intrinsic, longd_gauss_intrinsic
+from ...model.frame import heuristic_alpha
+from ...model.pose import alpha_interval, wrap
+from ...model.union import Union, cubic_coefficients
+
+__all__ = [
+    "DATA_PATH",
+    "FIELDS",
+    "HEADING_VECTORS",
+    "STORED_CELLS",
+    "STORED_STEER",
+    "Primitive",
+    "PrimitiveSet",
+    "compute_primitive_set",
+    "fine_points",
+    "from_arrays",
+    "heading_angles",
+    "heading_tables",
+    "max_reach",
+    "primitive_arrays",
+    "primitive_set",
+    "selection_margins",
+    "stored_sets",
+]
+
+#: The 16 grid-aligned headings, as integer direction vectors (counter-clockwise from +x).
+HEADING_VECTORS = (
+    (1, 0), (2, 1), (1, 1), (1, 2), (0, 1), (-1, 2), (-1, 1), (-2, 1),
+    (-1, 0), (-2, -1), (-1, -1), (-1, -2), (0, -1), (1, -2), (1, -1), (2, -1),
+)  # fmt: skip
+NH = len(HEADING_VECTORS)
+#: A primitive is dropped if a chain of kept ones reaches its end state within this factor.
+PRUNE = 0.03
+#: Turns (heading steps) of the turning primitives.
+TURNS = (-2, -1, 1, 2)
+#: Turning primitives kept per start heading and turn, at most.
+PER_TURN = 3
+#: Decimals (of ``L``) to which a candidate's estimated LONGD is rounded before ranking
+#: (:func:`_rank`): 1e-9 L merges exact ties that rounding split by up to 5e-16 relative,
+#: and only those (the closest distinct estimates of the stored sets are 7e-6 L apart:
+#: :func:`selection_margins`, ``tests/test_primitives_data.py``); a tie straddles a rounding
+#: boundary with probability about 1e-15 / 1e-9 per pair.
+RANK_DECIMALS = 9
+#: Abscissae (fractions of the frame span) and positions along the segment of the samples.
+SAMPLE_S = np.linspace(0.0, 1.0, 13)
+SAMPLE_T = np.linspace(0.0, 1.0, 7)
+#: The finer samples of :func:`fine_points` (a tighter screen near obstacles).
+FINE_S = np.linspace(0.0, 1.0, 49)
+FINE_T = np.linspace(0.0, 1.0, 25)
+_STEER_ALPHAS = 15
+_PEAK_S = np.linspace(0.0, 1.0, 49)
+
+
+def heading_angles() -> np.ndarray:
+    """World angles (radians, in ``(-pi, pi]``) of the 16 lattice headings."""
+    return np.array([math.atan2(y, x) for x, y in HEADING_VECTORS])
+
+
+@dataclass(frozen=True)
+class Primitive:
+    """One motion primitive from the lattice state ``(0, 0, h0)``.
+
+    Attributes
+    ----------
+    h0, h1 : int
+        Start and end heading indices (0..15).
+    di, dj : int
+        End point in lattice cells.
+    cost : float
+        Exact LONGD [1] (front-wheel path length, m).
+    alpha : float
+        The union's alpha (radians), in its intrinsic system (rigid-motion invariant).
+    d, phi0, phi1 : float
+        Chord length and intrinsic headings.
+    peak_curvature : float
+        Largest rear-path curvature (1/m).
+    points : ndarray (n, 2)
+        Points of the swept segment relative to the start point, lattice axes.
+    delta : float
+        Every point of the swept segment lies within ``delta`` of ``points``.
+    """
+
+    h0: int
+    h1: int
+    di: int
+    dj: int
+    cost: float
+    alpha: float
+    d: float
+    phi0: float
+    phi1: float
+    peak_curvature: float
+    points: np.ndarray
+    delta: float
+
+    def union(self, x: float, y: float, theta0: float, r: float, L: float) -> Union:
+        """The primitive's union from the world pose ``(x, y, theta0)`` of its start.
+
+        ``theta0`` is the world heading of the start state (the lattice's heading ``h0``)
+        and ``r`` the cell size; the end pose is the start moved by ``(di, dj)`` cells in
+        the lattice axes, which make the angle ``theta0 - heading_angles()[h0]`` with the
+        world axes.
+        """
+        rot = theta0 - _ANGLES[self.h0]
+        c, s = math.cos(rot), math.sin(rot)
+        ex, ey = self.di * r, self.dj * r
+        p1 = (
+            x + c * ex - s * ey,
+            y + s * ex + c * ey,
+            float(wrap(theta0 + (_ANGLES[self.h1] - _ANGLES[self.h0]))),
+        )
+        psi = math.atan2(p1[1] - y, p1[0] - x)
+        return Union.from_intrinsic((x, y, theta0), p1, self.alpha, L, self.d, psi, self.phi0, self.phi1)
+
+
+_ANGLES = heading_angles()
+
+
+@dataclass(frozen=True)
+class PrimitiveSet:
+    """The primitives of every lattice heading, for one robot and resolution.
+
+    Attributes
+    ----------
+    L, max_steer, resolution : float
+    by_heading : tuple of tuple of Primitive
+        ``by_heading[h]``: the primitives that start at heading ``h``.
+    """
+
+    L: float
+    max_steer: float
+    resolution: float
+    by_heading: tuple
+
+    @property
+    def min_turning_radius(self) -> float:
+        """``R = L / tan(max_steer)``."""
+        return self.L / math.tan(self.max_steer)
+
+    def turning_radii(self) -> np.ndarray:
+        """Radius of the circle through each turning primitive's ends, tangent to its start.
+
+        ``d / (2 sin(|dtheta| / 2))`` for a turn by ``dtheta`` over a chord ``d``: the radius of
+        the circle that a chain of such primitives follows on average (relative to nothing:
+        metres).
+        """
+        out = []
+        for p in self.by_heading[0] + self.by_heading[1] + self.by_heading[2] + self.by_heading[3]:
+            turn = abs(float(wrap(_ANGLES[p.h1] - _ANGLES[p.h0])))
+            if turn > 0:
+                out.append(p.d / (2.0 * math.sin(0.5 * turn)))
+        return np.array(out)
+
+    def count(self) -> int:
+        """Primitives per heading, on average."""
+        return sum(len(b) for b in self.by_heading) // NH
+
+
+def _rotate_quarter(p: Primitive, q: int) -> Primitive:
+    """``p`` turned by ``q`` quarter turns (exact in lattice integers)."""
+    di, dj, pts = p.di, p.dj, p.points
+    for _ in range(q):
+        di, dj = -dj, di
+        pts = np.column_stack((-pts[:, 1], pts[:, 0]))
+    return Primitive(
+        (p.h0 + 4 * q) % NH, (p.h1 + 4 * q) % NH, di, dj, p.cost, p.alpha, p.d, p.phi0, p.phi1,
+        p.peak_curvature, np.ascontiguousarray(pts), p.delta,
+    )  # fmt: skip
+
+
+def _chord_reach(r: float, R: float) -> float:
+    """Longest chord of a turning primitive: a 50 deg turn at 1.7 R, plus two cells."""
+    return 2.0 * 1.7 * R * math.sin(math.radians(25.0)) + 2.0 * r
+
+
+def max_reach(L: float, max_steer: float, resolution: float) -> float:
+    """A bound of ``|points|`` of every primitive of :func:`primitive_set` (kept by construction)."""
+    return 1.25 * _chord_reach(float(resolution), float(L) / math.tan(max_steer)) + float(L)
+
+
+def _candidates(h0: int, r: float, R: float):
+    """Lattice end states ``(i, j, h1)`` of turning unions from ``(0, 0, h0)`` that a cubic joins.
+
+    Returns arrays ``i, j, h1, d, phi0, phi1, lo, hi`` (``lo, hi``: the feasible alpha interval).
+    """
+    th0 = _ANGLES[h0]
+    reach = _chord_reach(r, R)
+    m = int(math.ceil(reach / r))
+    g = np.arange(-m, m + 1)
+    I, J, T = (a.ravel() for a in np.meshgrid(g, g, np.array(TURNS), indexing="ij"))
+    H1 = (h0 + T) % NH
+    d = np.hypot(I, J) * r
+    psi = np.arctan2(J, I)
+    phi0 = wrap(th0 - psi)
+    phi1 = wrap(_ANGLES[H1] - psi)
+    lo, hi = alpha_interval(phi0, phi1)
+    ok = (d > 0) & (d <= reach) & (hi - lo > 1e-6) & (np.abs(phi0) < 0.5 * math.pi)
+    return I[ok], J[ok], H1[ok], d[ok], phi0[ok], phi1[ok], lo[ok], hi[ok]
+
+
+#: Unions per block of :func:`_peaks` (its temporaries stay in the CPU's caches).
+_PEAK_BLOCK = 256
+
+
+def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
+    """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays of
+    one shape, at least 1-d; in blocks of :data:`_PEAK_BLOCK` rows: the same values, less
+    memory traffic)."""
+    d, phi0, phi1, alpha = np.broadcast_arrays(
+        *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha))
+    )
+    out = np.empty(d.shape)
+    for k in range(0, len(d), _PEAK_BLOCK):
+        sl = slice(k, k + _PEAK_BLOCK)
+        coef = cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
+        X, c1, c2, c3 = (np.asarray(v, dtype=float)[..., None] for v in coef)
+        x = X * _PEAK_S
+        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
+        out[sl] = np.max(np.abs(2.0 * c2 + 6.0 * c3 * x) / (1.0 + fp * fp) ** 1.5, axis=-1)
+    return out
+
+
+def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) -> np.ndarray:
+    """Per union: the optimal frame's alpha if its cubic keeps the steering limit (sampled),
+    else the alpha of least sampled peak curvature among ``_STEER_ALPHAS`` if that keeps it,
+    else NaN (vectorised). ``margins``: see :func:`selection_margins`."""
+    a = np.clip(np.asarray(heuristic_alpha(d, phi0, phi1, L), dtype=float), lo + 1e-9, hi - 1e-9)
+    peak = _peaks(d, phi0, phi1, a)
+    bad = ~(peak <= kmax)
+    checked = [peak]
+    if bad.any():
+        f = (np.arange(1, _STEER_ALPHAS + 1) / (_STEER_ALPHAS + 1))[None, :]
+        grid = lo[bad, None] + (hi[bad] - lo[bad])[:, None] * f
+        pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid)
+        k = np.argmin(pk, axis=1)
+        best = grid[np.arange(len(k)), k]
+        least = pk[np.arange(len(k)), k]
+        a[bad] = np.where(least <= kmax, best, np.nan)
+        checked.append(least)
+        if margins is not None and pk.shape[1] > 1:
+            two = np.sort(pk, axis=1)[:, :2]
+            _note(margins, "frame", np.min((two[:, 1] - two[:, 0]) / two[:, 0]))
+    if margins is not None:
+        _note(margins, "steer", np.min(np.abs(np.concatenate(checked) - kmax)) / kmax)
+    return a
+
+
+def _sample(
+    u: Union, L: float, S: np.ndarray = SAMPLE_S, T: np.ndarray = SAMPLE_T
+) -> tuple[np.ndarray, float]:
+    """Swept-segment points of ``u`` relative to its start (abscissae ``S``, positions along
+    the segment ``T``, fractions), and their covering radius ``delta``."""
+    x = u.x_end * S
+    A = u.to_world(x, u.f(x)) - np.array(u.p0[:2])
+    h = u.heading(x)
+    U = np.column_stack((np.cos(h), np.sin(h)))
+    pts = (A[:, None, :] + L * T[None, :, None] * U[:, None, :]).reshape(-1, 2)
+    # covering radius: half the longest move of A or B between consecutive abscissae (measured
+    # along a dense sampling: path length, not chord) plus half the spacing along the segment
+    per = 24
+    xd = u.x_end * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1)
+    Ad = u.to_world(xd, u.f(xd))
+    hd = u.heading(xd)
+    Bd = Ad + L * np.column_stack((np.cos(hd), np.sin(hd)))
+    la = np.hypot(*np.diff(Ad, axis=0).T)
+    lb = np.hypot(*np.diff(Bd, axis=0).T)
+    run = max(la.reshape(-1, per).sum(axis=1).max(), lb.reshape(-1, per).sum(axis=1).max())
+    delta = 0.5 * run * 1.02 + 0.5 * L * (T[1] - T[0])
+    return pts, float(delta)
+
+
+def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
+    th0 = _ANGLES[h0]
+    u = Union((0.0, 0.0, th0), (i * r, j * r, _ANGLES[h1]), alpha, L)
+    pts, delta = _sample(u, L)
+    cost = float(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10))
+    return Primitive(
+        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, delta
+    )
+
+
+def _rank(estimate: float, key: tuple[int, int, int, int], L: float) -> tuple:
+    """Rank of a candidate primitive: its estimated LONGD rounded to :data:`RANK_DECIMALS`
+    decimals of ``L``, then its integers ``key = (h0, h1, i, j)`` (module docstring: the
+    same order on every processor)."""
+    return (round(estimate / L, RANK_DECIMALS), key)
+
+
+def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
+    """``(h0, di, dj, h1, cost)`` of ``p`` and of its three quarter-turned copies (integers only)."""
+    out, di, dj = [], p.di, p.dj
+    for q in range(4):
+        out.append(((p.h0 + 4 * q) % NH, di, dj, (p.h1 + 4 * q) % NH, p.cost))
+        di, dj = -dj, di
+    return out
+
+
+_FINE: dict[int, tuple] = {}  # id of a live set -> its fine points (dropped with the set)
+
+
+def fine_points(ps: PrimitiveSet) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Per heading ``h``: finer swept-segment points of the primitives ``ps.by_heading[h]``
+    (array ``(m, n, 2)``, relative to the start, lattice axes; :data:`FINE_S` x :data:`FINE_T`)
+    and their covering radii ``(m,)``, smaller than :attr:`Primitive.delta`.
+
+    A planner screens a primitive by these where its coarse points are not conclusive
+    (close to an obstacle), before the certified test. Computed once per set (kept while
+    the set lives).
+    """
+    out = _FINE.get(id(ps))
+    if out is None:
+        base = []
+        for h in range(4):
+            pts, dl = [], []
+            for p in ps.by_heading[h]:
+                u = p.union(0.0, 0.0, float(_ANGLES[h]), ps.resolution, ps.L)
+                q, d = _sample(u, ps.L, FINE_S, FINE_T)
+                pts.append(q)
+                dl.append(d)
+            base.append((np.stack(pts), np.array(dl)))
+        out = []
+        for h in range(NH):
+            pts, dl = base[h % 4]
+            for _ in range(h // 4):
+                pts = np.stack((-pts[..., 1], pts[..., 0]), axis=-1)
+            out.append((np.ascontiguousarray(pts), dl))
+        out = tuple(out)
+        _FINE[id(ps)] = out
+        weakref.finalize(ps, _FINE.pop, id(ps), None)
+    return out
+
+
+def _reaches(
+    kept: list, h0: int, target: tuple, budget: float, depth: int = 3, margins: dict | None = None
+) -> bool:
+    """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?
+
+    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``. With
+    ``margins`` (a dict), the smallest ``|cost - budget| / budget`` of the chains compared is
+    kept under the key ``"budget"`` (:func:`selection_margins`).
+    """
+    frontier = [(0, 0, h0, 0.0)]
+    for _ in range(depth):
+        nxt = []
+        for i, j, h, c in frontier:
+            for di, dj, h1, cost in kept[h]:
+                c2 = c + cost
+                if margins is not None:
+                    _note(margins, "budget", abs(c2 - budget) / budget)
+                if c2 > budget:
+                    continue
+                s = (i + di, j + dj, h1)
+                if s == target:
+                    return True
+                nxt.append((*s, c2))
+        frontier = nxt
+    return False
+
+
+def _validate(L, max_steer, resolution) -> None:
+    for name, v in (("L", L), ("resolution", resolution)):
+        if isinstance(v, bool) or not isinstance(v, int | float) or not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    if not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
+        raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
+    if resolution > L:
+        raise ValueError(f"resolution must be at most L={L} (a turn needs several cells), got {resolution!r}")
+
+
+@functools.lru_cache(maxsize=8)
+def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """The motion primitives for a robot and a lattice resolution (module docstring).
+
+    The default sets (:data:`STORED_STEER`, ``L / resolution`` in :data:`STORED_CELLS`)
+    are read from the package data (:data:`DATA_PATH`, written by ``python -m segplan.fit``)
+    and scaled by ``L``: a union's shape and LONGD scale with ``L`` and the steering test is
+    invariant under the scaling, so the set of any ``L`` is the unit set scaled. Other sets
+    are computed (:func:`compute_primitive_set`, about a second). Either way a set is kept
+    (least-recently-used cache of 8 sets: :func:`primitive_set.cache_clear` empties it).
+
+    Parameters
+    ----------
+    L : float
+        Robot length (> 0).
+    max_steer : float
+        Steering limit, radians in ``(0, pi/2)``.
+    resolution : float
+        Cell size of the lattice (m, > 0, at most ``L``).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument.
+    """
+    _validate(L, max_steer, resolution)
+    cells = float(L) / float(resolution)
+    if max_steer == STORED_STEER and DATA_PATH.exists():
+        for n in STORED_CELLS:
+            if abs(cells - n) <= 1e-12 * n:
+                return from_arrays(stored_sets()[n], float(L), float(max_steer), float(resolution))
+    return compute_primitive_set(L, max_steer, resolution)
+
+
+#: The package data of the default primitive sets (unit ``L``), written by ``python -m segplan.fit``.
+DATA_PATH = Path(__file__).with_name("primitives.npz")
+#: Steering limit of the stored sets (radians: 45 deg).
+STORED_STEER = math.radians(45.0)
+#: ``L / resolution`` of the stored sets: the lattice's default resolution, its retry, and the
+#: coarser lattice of large floors (L / 4), and the coarse lattice of the cost-to-go (L / 2,
+#: :mod:`segplan.planning.lattice.guide`).
+STORED_CELLS = (2, 4, 8, 16)
+#: The per-primitive scalar fields of :func:`primitive_arrays` (``points`` apart).
+FIELDS = ("h0", "h1", "di", "dj", "cost", "alpha", "d", "phi0", "phi1", "peak_curvature", "delta")
+_INT_FIELDS = ("h0", "h1", "di", "dj")
+_LENGTHS = ("cost", "d", "delta")  # scale with L (points too; peak_curvature with 1 / L)
+
+
+def primitive_arrays(ps: PrimitiveSet) -> dict[str, np.ndarray]:
+    """The primitives of headings 0..3 of ``ps`` as arrays (the others are quarter turns of them).
+
+    Keys :data:`FIELDS` (one entry per primitive) and ``points`` (primitives x samples x 2).
+    """
+    base = [p for h in range(4) for p in ps.by_heading[h]]
+    out = {
+        f: np.array([getattr(p, f) for p in base], dtype=np.int64 if f in _INT_FIELDS else float)
+        for f in FIELDS
+    }
+    out["points"] = np.stack([p.points for p in base])
+    return out
+
+
+def from_arrays(a: dict, L: float, max_steer: float, resolution: float) -> PrimitiveSet:
+    """The :class:`PrimitiveSet` of a unit-``L`` set's arrays (:func:`primitive_arrays`), scaled to ``L``."""
+    scale = {f: L for f in _LENGTHS} | {"peak_curvature": 1.0 / L}
+    cols = [a[f].tolist() if f in _INT_FIELDS else (a[f] * scale.get(f, 1.0)).tolist() for f in FIELDS]
+    pts = a["points"] * L
+    base: list[list[Primitive]] = [[] for _ in range(4)]
+    for k, row in enumerate(zip(*cols, strict=True)):
+        kw = dict(zip(FIELDS, row, strict=True))
+        base[kw["h0"]].append(Primitive(**kw, points=np.ascontiguousarray(pts[k])))
+    kept = [[_rotate_quarter(p, h // 4) for p in base[h % 4]] for h in range(NH)]
+    return PrimitiveSet(L, max_steer, resolution, tuple(tuple(k) for k in kept))
+
+
+@functools.cache
+def stored_sets() -> dict[int, dict[str, np.ndarray]]:
+    """The stored unit-``L`` sets by ``L / resolution`` (read once per process), and their
+    provenance (key ``"provenance"``: a JSON string)."""
+    with np.load(DATA_PATH, allow_pickle=False) as z:
+        out: dict = {n: {k: z[f"{n}/{k}"] for k in (*FIELDS, "points")} for n in STORED_CELLS}
+        out["provenance"] = str(z["provenance"])
+    return out
+
+
+def _note(margins: dict, key: str, value: float) -> None:
+    margins[key] = min(margins.get(key, math.inf), float(value))
+
+
+def selection_margins(L: float, max_steer: float, resolution: float) -> dict[str, float]:
+    """How close each kind of decision of :func:`compute_primitive_set` came to going the other way.
+
+    The selection is the same on every processor if no decision is closer to its threshold
+    than the rounding differences between processors (about 5e-16 relative; module
+    docstring). Exact ties of the ranking are not decisions: they are broken on integers.
+
+    Returns
+    -------
+    dict
+        Smallest relative margins: ``"rank"``, the closest two distinct rounded estimates
+        (in units of ``L``); ``"budget"``, a chain's cost against the pruning budget;
+        ``"frame"``, the least and the next least sampled peak curvature of the frames tried
+        where the optimal frame breaks the steering limit; ``"steer"``, a sampled or exact
+        peak curvature against the limit; ``"reach"``, a primitive's farthest sample against
+        :func:`max_reach`.
+    """
+    margins: dict[str, float] = {}
+    compute_primitive_set(L, max_steer, resolution, margins=margins)
+    return margins
+
+
+def compute_primitive_set(
+    L: float, max_steer: float, resolution: float, margins: dict | None = None
+) -> PrimitiveSet:
+    """:func:`primitive_set` computed, never read from the stored sets (module docstring).
+
+    ``margins``: a dict that receives the decisions' smallest margins
+    (:func:`selection_margins`), or None.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument.
+    """
+    _validate(L, max_steer, resolution)
+    L, r = float(L), float(resolution)
+    kmax = math.tan(max_steer) / L
+    R = 1.0 / kmax
+    bound = max_reach(L, max_steer, r)
+    base: list[list[Primitive]] = [[] for _ in range(4)]
+    for h0 in range(4):  # the straight unit step
+        i, j = HEADING_VECTORS[h0]
+        d = math.hypot(i, j) * r
+        base[h0].append(_make(h0, h0, i, j, r, L, 0.0, d, 0.0, 0.0))
+    cands = []
+    for h0 in range(4):
+        I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
+        a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6), margins)
+        ok = np.isfinite(a)
+        est = longd_gauss_intrinsic(d[ok], phi0[ok], phi1[ok], a[ok], L)
+        for row in zip(est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok], strict=True):
+            e, i, j, h1, al, dd, p0, p1 = (float(v) for v in row)
+            cands.append((e, h0, int(h1), int(i), int(j), al, dd, p0, p1))
+    cands.sort(key=lambda c: _rank(c[0], c[1:5], L))
+    if margins is not None:
+        ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
+        _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
+
+    def all_headings(b):
+        return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
+
+    kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
+
+    def keep(p: Primitive) -> None:
+        for h0_, di, dj, h1_, c in _steps(p):
+            kept[h0_].append((di, dj, h1_, c))
+
+    for b in base:
+        for p in b:
+            keep(p)
+    per: dict = {}
+    for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
+        key = (h0, (h1 - h0) % NH)
+        if per.get(key, 0) >= PER_TURN:
+            continue
+        if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
+            continue
+        p = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
+        if margins is not None:
+            _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
+            _note(margins, "reach", abs(np.abs(p.points).max() - bound) / bound)
+        if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
+            continue
+        base[h0].append(p)
+        per[key] = per.get(key, 0) + 1
+        keep(p)
+    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))
+
+
+_TABLES: dict = {}  # (id of a live primitive set, cell) -> its per-heading tables
+
+
+def heading_tables(ps: PrimitiveSet, cell: float) -> tuple:
+    """Per heading, the tables the lattice search (:mod:`segplan.planning.lattice.search`) expands with.
+
+    Parameters
+    ----------
+    ps : PrimitiveSet
+        The motion primitives.
+    cell : float
+        The clearance grid's cell size (metres).
+
+    Returns
+    -------
+    tuple
+        ``(points, cells, delta, step, cost)``, each a list over the headings: the
+        primitives' sampled points, their cells ``(i, j)`` relative to the start's cell,
+        covering radii (plus 1e-9), steps ``(di, dj, h1)`` and LONGD costs [1]. Computed
+        once per primitive set and cell (kept while the set lives).
+    """
+    key = (id(ps), float(cell))
+    out = _TABLES.get(key)
+    if out is None:
+        points, cells, delta, step, cost = [], [], [], [], []
+        for prims in ps.by_heading:
+            pts = np.stack([p.points for p in prims])
+            points.append(pts)
+            cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
+            delta.append(np.array([p.delta for p in prims]) + 1e-9)
+            step.append([(p.di, p.dj, p.h1) for p in prims])
+            cost.append([p.cost for p in prims])
+        out = (points, cells, delta, step, cost)
+        _TABLES[key] = out
+        weakref.finalize(ps, _TABLES.pop, key, None)
+    return out

@@ -1,0 +1,439 @@
+"""Refinement of a found plan (beyond the paper): shortcuts and local moves of its nodes.
+
+The paper's search returns the best chain of unions *in the graph it built*: its nodes
+are the start, the goal, intermediate nodes placed off obstacle vertices and turn states.
+A shorter chain usually exists nearby. :func:`refine` looks for it with the paper's own
+pieces (cubic unions in their optimal reference system, the LONGD cost, the on-line
+collision test), in three steps repeated ``rounds`` times:
+
+1. **Shortcuts.** Every pair of nodes ``i < j`` of the chain may be joined directly; the
+   cheapest chain over those links (a shortest path in a small acyclic graph) is kept.
+   Links are screened by their cost in the heuristic frame, vectorised, and only the
+   links of a best chain are checked (union, steering limit, walls, obstacles), until a
+   best chain is made of checked links.
+2. **Splits.** A union whose chord is longer than ``split * L`` gets a new node at its
+   middle (the pose of the rear point half way along the cubic's frame abscissa): the
+   chain's shape, so far one cubic, becomes two.
+3. **Local moves** (a pattern search, our choice). Each interior node in turn tries
+   ``len(MOVES)`` moves in its own frame: forward/back, left/right, turning left/right
+   and the four combinations of a sideways move with a turn. The two unions of every
+   move are screened at once (vectorised); the cheapest screened moves are checked
+   exactly, and the first that is free and lowers the node's two link costs is taken.
+   A node that cannot improve halves its step; the search stops when every step is below
+   ``min_step * L`` or after ``max_sweeps`` sweeps.
+
+Links are compared by [1] integrated with a fixed Gauss-Legendre rule (formula [2] is no
+guide here: most short, turning links lie outside its validated domain); a local move is
+taken only if it lowers its node's two link costs by at least ``MIN_GAIN * L``. The
+returned plan's ``cost`` is the exact LONGD [1] of its unions (Romberg), like every
+plan, and is never above the input's: if the refined chain is not shorter, the input's
+chain is returned. The result is deterministic (no random moves, a fixed order). It is a
+local improvement: the chain keeps the corridor the search chose.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+
+from ..floor.scenario import Scenario
+from ..model.cost import checked_intrinsic, longd_exact_intrinsic, longd_gauss_intrinsic
+from ..model.frame import heuristic_alpha
+from ..model.pose import Pose, alpha_interval, wrap
+from ..model.union import cubic_coefficients
+from .links import ALPHA_MARGIN, LinkModel
+from .plan import PLAN_RTOL, Plan, Refinement
+from .validity import Workspace
+
+__all__ = ["certain_failures", "refine", "refine_with"]
+
+#: Moves of a node in its own frame: (forward, left, turn) in units of the node's step
+#: (turns in units of ``step / L`` radians).
+MOVES = np.array(
+    [
+        (1, 0, 0),
+        (-1, 0, 0),
+        (0, 1, 0),
+        (0, -1, 0),
+        (0, 0, 1),
+        (0, 0, -1),
+        (0, 1, 1),
+        (0, 1, -1),
+        (0, -1, 1),
+        (0, -1, -1),
+    ],
+    dtype=float,
+)
+#: Least decrease of a node's two link costs (units of L) for a local move to be taken.
+MIN_GAIN = 1e-3
+#: Screened moves checked exactly per node update.
+CHECKS_PER_UPDATE = 1
+#: Fractions of a link's frame span sampled by :func:`certain_failures`.
+SAMPLES = np.linspace(0.0, 1.0, 9)
+
+
+def _check_options(rounds, split, min_step, first_step, max_sweeps):
+    if isinstance(rounds, bool) or int(rounds) != rounds or rounds < 0:
+        raise ValueError(f"rounds must be an integer >= 0, got {rounds!r}")
+    if isinstance(max_sweeps, bool) or int(max_sweeps) != max_sweeps or max_sweeps < 0:
+        raise ValueError(f"max_sweeps must be an integer >= 0, got {max_sweeps!r}")
+    for name, value in (("split", split), ("min_step", min_step), ("first_step", first_step)):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not (math.isfinite(value) and value > 0)
+        ):
+            raise ValueError(f"{name} must be a finite number > 0 (units of L), got {value!r}")
+    if min_step > first_step:
+        raise ValueError(f"min_step ({min_step!r}) must not exceed first_step ({first_step!r})")
+
+
+def refine(
+    plan,
+    scenario: Scenario,
+    *,
+    rounds: int = 1,
+    split: float = 3.0,
+    first_step: float = 0.5,
+    min_step: float = 1.0 / 16.0,
+    max_sweeps: int = 6,
+):
+    """A shorter plan near ``plan``: shortcuts, splits and local moves of its nodes.
+
+    Beyond the paper (see the module docstring). Keeps the paper's pieces: every link is
+    a cubic union in the optimal reference system (heuristic method here; through
+    ``plan_scenario(..., refine=True)`` the search's own method, so ``alpha_method="exact"``
+    makes the refinement far slower), free of the enlarged obstacles, inside the walls and
+    within the steering limit.
+
+    Parameters
+    ----------
+    plan : segplan.Plan
+        A plan of ``scenario`` (from :func:`segplan.plan_scenario`).
+    scenario : Scenario
+        The scenario the plan was made for.
+    rounds : int
+        Rounds of shortcuts, splits and local moves (0: shortcuts only).
+    split : float
+        Chords longer than ``split * L`` get a middle node in each round.
+    first_step, min_step : float
+        First and smallest step of a node's local moves, units of ``L`` (turns: the
+        same numbers in radians).
+    max_sweeps : int
+        Sweeps over the nodes per round, at most.
+
+    Returns
+    -------
+    segplan.Plan
+        With ``nodes``, ``unions``, ``kinds`` (new nodes: ``"refined"``), ``cost`` (exact
+        LONGD [1]) and ``seconds`` (search plus refinement) updated and ``refinement``
+        set (:class:`Refinement`).
+
+    Raises
+    ------
+    ValueError
+        Bad options, a plan that does not belong to the scenario (other start, goal or
+        robot, or a union that is not free there), or a plan that is already refined.
+
+    Notes
+    -----
+    Inside the refinement, links are compared by [1] integrated with a fixed 24-point
+    Gauss-Legendre rule (:func:`segplan.model.cost.longd_gauss_intrinsic`), both when screened
+    and when checked: one objective, so that a screened improvement is a real one. The
+    returned ``cost`` is Romberg's [1], as for every plan.
+    """
+    if not isinstance(plan, Plan):
+        raise ValueError(f"plan must be a segplan.Plan, got {type(plan).__name__}")
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    if plan.nodes[0] != Pose(*scenario.start) or plan.nodes[-1] != Pose(*scenario.goal):
+        raise ValueError("plan does not go from the scenario's start to its goal")
+    if any(abs(u.L - scenario.robot.L) > 1e-12 * scenario.robot.L for u in plan.unions):
+        raise ValueError("plan was made for another robot length than the scenario's")
+    robot = scenario.robot
+    ws = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
+    for i, u in enumerate(plan.unions):
+        if not ws.union_free(u):
+            raise ValueError(f"plan's union {i} is not free in this scenario (a plan of another scenario?)")
+    return refine_with(
+        plan,
+        LinkModel(ws),
+        rounds=rounds,
+        split=split,
+        first_step=first_step,
+        min_step=min_step,
+        max_sweeps=max_sweeps,
+    )
+
+
+def refine_with(
+    plan, links: LinkModel, *, rounds=1, split=3.0, first_step=0.5, min_step=1.0 / 16.0, max_sweeps=6
+):
+    """:func:`refine` with the search's own link model (its caches are reused)."""
+    _check_options(rounds, split, min_step, first_step, max_sweeps)
+    if plan.refinement is not None:
+        raise ValueError("plan is already refined")
+    t0 = time.perf_counter()
+    r = _Refiner(links)
+    nodes = list(plan.nodes)
+    kinds = list(plan.kinds)
+    for u in plan.unions:  # the search checked them: known free
+        r.known[(u.p0, u.p1)] = (u, r.cost(u))
+    n0 = len(nodes)
+    original = set(nodes)
+    nodes, kinds = r.shortcut(nodes, kinds)
+    for _ in range(int(rounds)):
+        nodes, kinds = r.split(nodes, kinds, split * links.L)
+        nodes = r.polish(nodes, first_step, min_step, int(max_sweeps))
+        kinds = [k if nodes[i] in original else "refined" for i, k in enumerate(kinds)]
+        nodes, kinds = r.shortcut(nodes, kinds)
+    unions = tuple(r.known[(a, b)][0] for a, b in zip(nodes[:-1], nodes[1:], strict=True))
+    cost = 0.0
+    for u in unions:
+        cost += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=PLAN_RTOL))
+    if not cost < plan.cost:  # not shorter by [1]: keep the search's chain
+        nodes, kinds, unions, cost = list(plan.nodes), list(plan.kinds), plan.unions, plan.cost
+    seconds = time.perf_counter() - t0
+    info = Refinement(
+        cost_before=plan.cost,
+        cost_after=cost,
+        nodes_before=n0,
+        nodes_after=len(nodes),
+        shortcuts=r.removed,
+        splits=r.added,
+        moves=r.moves,
+        updates=r.updates,
+        checked=r.checked,
+        seconds=seconds,
+    )
+    return dataclasses.replace(
+        plan,
+        nodes=tuple(nodes),
+        unions=unions,
+        cost=cost,
+        kinds=tuple(kinds),
+        seconds=plan.seconds + seconds,
+        refinement=info,
+    )
+
+
+class _Refiner:
+    """The state of one refinement: checked links and counters."""
+
+    def __init__(self, links: LinkModel):
+        self.links = links
+        self.ws = links.ws
+        self.L = links.L
+        self.known: dict = {}  # (p0, p1) -> (union, cost) of a checked free link, or (None, inf)
+        self.removed = self.added = self.moves = self.updates = self.checked = 0
+
+    # -- links ---------------------------------------------------------------------------
+    def link(self, a: Pose, b: Pose) -> float:
+        """Cost of the checked link a -> b (``inf`` if no free union joins them)."""
+        out = self.known.get((a, b))
+        if out is None:
+            self.checked += 1
+            u = self.links.union(a, b)
+            if u is None or not self.ws.union_free(u):
+                out = (None, math.inf)
+            else:
+                out = (u, self.cost(u))
+            self.known[(a, b)] = out
+        return out[1]
+
+    @staticmethod
+    def cost(u) -> float:
+        """The refinement's link cost: [1] by Gauss-Legendre (:func:`longd_gauss_intrinsic`)."""
+        return float(longd_gauss_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L))
+
+    def screen(self, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+        """The link cost in the heuristic frame for links ``A[k] -> B[k]``, vectorised.
+
+        ``inf`` where no cubic joins the poses or where the link surely fails: a sampled
+        curvature above the steering limit, or a sampled point of the swept segment
+        outside the walls or strictly inside an obstacle (:func:`certain_failures`).
+        Screening only: a finite value is no proof that the link is free.
+        """
+        A, B = np.broadcast_arrays(A, B)
+        dx, dy = B[..., 0] - A[..., 0], B[..., 1] - A[..., 1]
+        d = np.hypot(dx, dy)
+        psi = np.arctan2(dy, dx)
+        phi0, phi1 = wrap(A[..., 2] - psi), wrap(B[..., 2] - psi)
+        lo, hi = alpha_interval(phi0, phi1)
+        ok = (d > 1e-9 * self.L) & (hi - lo > 2.0 * ALPHA_MARGIN)
+        out = np.full(d.shape, math.inf)
+        if np.any(ok):
+            dd, p0, p1 = d[ok], phi0[ok], phi1[ok]
+            alpha = np.atleast_1d(heuristic_alpha(dd, p0, p1, self.L))
+            cost = longd_gauss_intrinsic(dd, p0, p1, alpha, self.L)
+            bad = certain_failures(self.ws, A[ok], psi[ok] - alpha, *cubic_coefficients(dd, p0, p1, alpha))
+            out[ok] = np.where(bad, math.inf, cost)
+        return out
+
+    # -- shortcuts -----------------------------------------------------------------------
+    def shortcut(self, nodes: list, kinds: list) -> tuple[list, list]:
+        """The cheapest chain over direct links between the nodes (order kept)."""
+        n = len(nodes)
+        if n < 3:
+            return nodes, kinds
+        P = np.array(nodes, dtype=float)
+        I, J = np.triu_indices(n, k=2)
+        guess = dict(
+            zip(zip(I.tolist(), J.tolist(), strict=True), self.screen(P[I], P[J]).tolist(), strict=True)
+        )
+        while True:
+            best = [0.0] + [math.inf] * (n - 1)
+            prev = [-1] * n
+            for j in range(1, n):
+                for i in range(j):
+                    key = (nodes[i], nodes[j])
+                    c = self.known[key][1] if key in self.known else guess.get((i, j), math.inf)
+                    if best[i] + c < best[j]:
+                        best[j], prev[j] = best[i] + c, i
+            chain = [n - 1]
+            while chain[-1] != 0:
+                chain.append(prev[chain[-1]])
+            chain.reverse()
+            todo = [
+                (i, j)
+                for i, j in zip(chain[:-1], chain[1:], strict=True)
+                if (nodes[i], nodes[j]) not in self.known
+            ]
+            if not todo:
+                break
+            for i, j in todo:
+                self.link(nodes[i], nodes[j])
+        self.removed += n - len(chain)
+        return [nodes[k] for k in chain], [kinds[k] for k in chain]
+
+    # -- splits --------------------------------------------------------------------------
+    def split(self, nodes: list, kinds: list, longest: float) -> tuple[list, list]:
+        """A middle node on every union whose chord is longer than ``longest``."""
+        out, out_kinds = [nodes[0]], [kinds[0]]
+        for a, b, k in zip(nodes[:-1], nodes[1:], kinds[1:], strict=True):
+            u = self.known[(a, b)][0]
+            if u.d > longest:
+                x = 0.5 * u.x_end
+                px, py = u.to_world(x, u.f(x)).tolist()
+                m = Pose(px, py, wrap(float(u.heading(x))))
+                c0, c1 = self.link(a, m), self.link(m, b)
+                if math.isfinite(c0 + c1):  # the halves of a free cubic are, in general, free
+                    out.append(m)
+                    out_kinds.append("refined")
+                    self.added += 1
+            out.append(b)
+            out_kinds.append(k)
+        return out, out_kinds
+
+    # -- local moves ---------------------------------------------------------------------
+    def polish(self, nodes: list, first_step: float, min_step: float, max_sweeps: int) -> list:
+        """Pattern search on the interior nodes (module docstring, step 3).
+
+        A sweep takes the odd interior nodes, then the even ones: nodes of one parity
+        share no link, so their moves are screened in one vectorised call.
+        """
+        nodes = list(nodes)
+        L = self.L
+        steps = [first_step * L] * len(nodes)
+        floor = min_step * L
+        gain = MIN_GAIN * L
+        m = len(MOVES)
+        for _ in range(max_sweeps):
+            active = False
+            for parity in (1, 2):
+                idx = [i for i in range(parity, len(nodes) - 1, 2) if steps[i] >= floor]
+                if not idx:
+                    continue
+                active = True
+                self.updates += len(idx)
+                P = np.array([nodes[i] for i in idx], dtype=float)
+                s = np.array([steps[i] for i in idx])[:, None]
+                c, sn = np.cos(P[:, 2:3]), np.sin(P[:, 2:3])
+                fwd, left, turn = MOVES[:, 0] * s, MOVES[:, 1] * s, MOVES[:, 2] * (s / L)
+                Q = np.stack(
+                    (P[:, :1] + c * fwd - sn * left, P[:, 1:2] + sn * fwd + c * left, wrap(P[:, 2:3] + turn)),
+                    axis=-1,
+                )
+                prev = np.array([nodes[i - 1] for i in idx], dtype=float)[:, None, :]
+                after = np.array([nodes[i + 1] for i in idx], dtype=float)[:, None, :]
+                k = len(idx) * m
+                both = self.screen(
+                    np.concatenate((np.broadcast_to(prev, Q.shape).reshape(k, 3), Q.reshape(k, 3))),
+                    np.concatenate((Q.reshape(k, 3), np.broadcast_to(after, Q.shape).reshape(k, 3))),
+                )
+                guess = (both[:k] + both[k:]).reshape(len(idx), m)
+                for row, i in enumerate(idx):
+                    a, p, b = nodes[i - 1], nodes[i], nodes[i + 1]
+                    now = self.link(a, p) + self.link(p, b)
+                    moved = False
+                    for j in np.argsort(guess[row], kind="stable")[:CHECKS_PER_UPDATE]:
+                        if not guess[row, j] < now - gain:
+                            break
+                        q = Pose(*Q[row, j].tolist())
+                        if self.link(a, q) + self.link(q, b) < now - gain:
+                            nodes[i] = q
+                            self.moves += 1
+                            moved = True
+                            break
+                    if not moved:
+                        steps[i] *= 0.5
+            if not active:
+                break
+        return nodes
+
+
+def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2, c3) -> np.ndarray:
+    """Links that surely break a rule, from samples (vectorised; screening only).
+
+    A link fails for certain if its rear path's curvature, sampled at ``SAMPLES``
+    abscissae, exceeds the steering limit, or if a sampled point of the swept segment
+    (rear point, middle, front wheel) lies outside the free bounds or strictly inside an
+    enlarged obstacle. The converse does not hold: a link with no certain failure must
+    still be checked (:meth:`segplan.planning.validity.Workspace.union_free`).
+
+    Parameters
+    ----------
+    ws : Workspace
+    A : ndarray (n, 3)
+        Start poses of the links.
+    frame : ndarray (n,)
+        World angles of the links' alpha frames (``psi - alpha``).
+    X, c1, c2, c3 : ndarray (n,)
+        The cubics (:func:`segplan.model.union.cubic_coefficients`).
+    """
+    x = X[:, None] * SAMPLES
+    fp = c1[:, None] + (2.0 * c2[:, None] + 3.0 * c3[:, None] * x) * x  # f'
+    fpp = 2.0 * c2[:, None] + 6.0 * c3[:, None] * x  # f''
+    bad = np.any(np.abs(fpp) > ws.max_curvature * (1.0 + fp * fp) ** 1.5, axis=1)
+    fx = ((c3[:, None] * x + c2[:, None]) * x + c1[:, None]) * x  # f
+    h = frame[:, None] + np.arctan(fp)  # heading
+    cf, sf = np.cos(frame)[:, None], np.sin(frame)[:, None]
+    rx, ry = A[:, :1] + cf * x - sf * fx, A[:, 1:2] + sf * x + cf * fx  # rear point, world
+    ux, uy = np.cos(h), np.sin(h)
+    L = ws.L
+    wx = np.concatenate((rx, rx + 0.5 * L * ux, rx + L * ux), axis=1)
+    wy = np.concatenate((ry, ry + 0.5 * L * uy, ry + L * uy), axis=1)
+    if ws.bounds is not None:
+        xmin, ymin, xmax, ymax = ws.bounds
+        bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
+    # only the obstacles whose box meets the samples' box can hold a sample (large floors)
+    bb = ws.box_array
+    lo_x, hi_x, lo_y, hi_y = wx.min(), wx.max(), wy.min(), wy.max()
+    meet = (bb[:, 0] < hi_x) & (bb[:, 2] > lo_x) & (bb[:, 1] < hi_y) & (bb[:, 3] > lo_y)
+    for i in np.flatnonzero(meet).tolist():
+        poly, (x0, y0, x1, y1) = ws.convex[i], ws.boxes[i]
+        near = (wx > x0) & (wx < x1) & (wy > y0) & (wy < y1)  # inside the box: worth the edges
+        if not near.any():
+            continue
+        k, j = np.nonzero(near)
+        px, py = wx[k, j], wy[k, j]
+        g = (
+            np.multiply.outer(px, poly.normals[:, 0])
+            + np.multiply.outer(py, poly.normals[:, 1])
+            - poly.offsets
+        )
+        bad[k[np.all(g < 0.0, axis=1)]] = True  # strictly inside every edge
+    return bad

@@ -1,0 +1,3 @@
+"""Pictures and measurements of plans: plots, animations, path metrics."""
+
+__all__: list[str] = []
