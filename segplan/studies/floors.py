@@ -290,7 +290,8 @@ def hard_cases(scenario_dir: str | Path | None = None) -> dict[str, Scenario]:
     Parameters
     ----------
     scenario_dir : path, optional
-        Where ``turn_around.json`` is (default: the repository's ``scenarios/``).
+        Where ``turn_around.json`` is (default: the shipped scenario, ``load_scenario("turn_around")``,
+        read from the installed package).
 
     Returns
     -------
@@ -381,9 +382,11 @@ def hard_cases(scenario_dir: str | Path | None = None) -> dict[str, Scenario]:
             "The goal's box has a slit 0.5 m wide, closed by the enlargement (2 x 0.3 m): no plan exists.",
         ),
     ]
-    d = Path(__file__).resolve().parents[2] / "scenarios" if scenario_dir is None else Path(scenario_dir)
     out = {sc.name: sc for sc in cases}
-    out["turn_around"] = load_scenario(d / "turn_around.json")
+    if scenario_dir is None:
+        out["turn_around"] = load_scenario("turn_around")  # shipped with the package
+    else:
+        out["turn_around"] = load_scenario(Path(scenario_dir) / "turn_around.json")
     return out
 
 
