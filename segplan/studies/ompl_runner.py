@@ -142,10 +142,13 @@ def ompl_heading(theta: float) -> float:
     OMPL rejects a start heading of exactly ``+pi`` as out of bounds. ``x % (2 pi)`` can
     round up to ``2 pi`` itself for tiny negative ``x``; the result is folded back.
     """
-    a = float(wrap_floor(float(theta)))  # (theta + pi) mod 2 pi - pi
+    t = float(theta)
+    if not math.isfinite(t):
+        raise ValueError(f"theta must be a finite angle, got {theta!r}")
+    a = float(wrap_floor(t))  # (theta + pi) mod 2 pi - pi
     if a >= math.pi:
         a -= TWO_PI
-    if not -math.pi <= a < math.pi or not math.isfinite(a):
+    if not -math.pi <= a < math.pi:
         raise ValueError(f"theta must be a finite angle, got {theta!r}")
     return a
 
