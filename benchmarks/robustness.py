@@ -32,6 +32,9 @@ from segplan.studies import ompl_runner
 from segplan.studies import robustness as rb
 from segplan.studies.progress import progress, say
 
+#: The repository's stored results (the OMPL side is not shipped with the package).
+RESULTS = Path(__file__).resolve().parent / "results"
+
 
 def main(argv: Sequence[str] | None = None) -> int:
     """``python benchmarks/robustness.py [--ompl] [--quick] [--out CSV] [...]``."""
@@ -43,7 +46,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument(
         "--scheduler", metavar="ADDRESS", help="a Dask scheduler (tcp://host:8786): run OMPL on that cluster"
     )
-    ap.add_argument("--ompl-csv", type=Path, default=rb.OMPL_CSV, help="the stored OMPL runs")
+    ap.add_argument("--ompl-csv", type=Path, default=RESULTS / rb.OMPL_CSV_NAME, help="the stored OMPL runs")
     ap.add_argument(
         "--quick",
         action="store_true",
@@ -89,8 +92,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             t = rb.run_ompl(jobs, *files, **run)
             say(f"OMPL quick: {int(t['solved'].sum())} of {len(t)} solved")
         else:
-            csv = args.ompl_csv
-            files = (csv, csv.with_name(csv.stem + "_paths.json.gz"), csv.with_suffix(".json"))
+            files = rb.ompl_files(args.ompl_csv)
             rb.run_ompl(
                 rb.ompl_jobs(groups), *files, workers=args.jobs, scheduler=args.scheduler, argv=argv_list
             )

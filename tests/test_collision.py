@@ -470,6 +470,17 @@ def test_stats_and_exports():
         assert getattr(segplan, name) is getattr(geo, name)
 
 
+def test_no_module_counters():
+    """Issue 24: the module keeps no state; counts go to a CollisionStats the caller passes."""
+    assert not hasattr(col, "STATS") and "STATS" not in col.__all__
+    u = s_union()
+    near = np.array([[2.0, 0.3], [2.5, 0.3], [2.5, 0.8]])
+    before = {k: v for k, v in vars(col).items() if not k.startswith("__")}
+    col.collides(u, near)
+    col.union_free(u, [near])
+    assert {k: v for k, v in vars(col).items() if not k.startswith("__")} == before
+
+
 # -- numerical kernels ------------------------------------------------------------------------------------
 @given(
     st.lists(st.floats(-1.0, 2.0), min_size=3, max_size=3),

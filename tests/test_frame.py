@@ -13,6 +13,7 @@ import segplan
 from segplan import Pose, longd_exact, optimal_alpha
 from segplan.fit.heuristic import fit_heuristic
 from segplan.fit.store import FRAME_ATOL, frame_check_grid
+from segplan.model import frame as frame_module
 from segplan.model.cost import longd_integrand
 from segplan.model.frame import case_b_alpha, heuristic_alpha, heuristic_coefficients, optimal_alpha_intrinsic
 from segplan.model.frame_exact import (
@@ -304,9 +305,13 @@ def test_heuristic_vectorised_equals_scalar():
     np.testing.assert_allclose(optimal_alpha(poses0, poses1, 1.0), many, atol=1e-12)
 
 
-def test_stored_fit_is_the_fit_and_cached():
+def test_stored_fit_is_the_fit_and_an_immutable_constant():
     fit = heuristic_coefficients()
-    assert heuristic_coefficients() is fit
+    assert fit is frame_module.HEURISTIC_FIT  # read once at import: no cache filled at first use
+    assert not fit.coef.flags.writeable
+    with pytest.raises(ValueError):
+        fit.coef[0] = 0.0
+    assert not any(isinstance(v, dict) for k, v in vars(frame_module).items() if not k.startswith("__"))
     again = fit_heuristic()  # refitted here; the package reads the stored coefficients
     # compared by the frames they give (segplan.fit.store.FRAME_ATOL says why not by coefficient)
     grid = frame_check_grid()

@@ -27,6 +27,7 @@ from segplan.studies import floors as fl
 from segplan.studies import robustness as rb
 
 ROOT = Path(__file__).resolve().parents[1]
+STORED = rb.ompl_files(ROOT / "benchmarks" / "results" / rb.OMPL_CSV_NAME)  # the repository's OMPL side
 
 
 # -- the floors ---------------------------------------------------------------------------
@@ -118,8 +119,8 @@ def test_hard_cases_are_what_they_say():
 
 # -- the stored OMPL side -----------------------------------------------------------------
 def test_stored_ompl_csv_covers_every_run(groups):
-    assert rb.OMPL_CSV.exists(), "benchmarks/results/robustness_ompl.csv missing: run robustness.py --ompl"
-    t = rb.read_ompl()
+    assert STORED.csv.exists(), "benchmarks/results/robustness_ompl.csv missing: run robustness.py --ompl"
+    t = rb.read_ompl(STORED.csv)
     jobs = rb.ompl_jobs(groups)
     want = {rb.job_id(j): fl.floor_key(j[1]) for j in jobs}
     ids = [
@@ -137,7 +138,7 @@ def test_stored_ompl_csv_covers_every_run(groups):
     assert set(t["budget"]) == set(rb.BUDGETS)
     assert t.loc[t["solved"], "front_length"].notna().all()
     assert not (t["valid"] & ~t["solved"]).any()  # valid only if solved
-    prov = json.loads(rb.OMPL_PROVENANCE.read_text())
+    prov = json.loads(STORED.provenance.read_text())
     for key in ("budgets", "seeds", "generator_version", "sessions"):
         assert key in prov
     for s in prov["sessions"]:
@@ -153,16 +154,16 @@ def test_stored_ompl_csv_covers_every_run(groups):
 def test_stored_ompl_runs_are_fair_with_simplified_paths():
     """Every stored run of 0.5 s or more got at least 0.9 of a core (the rule recorded in the
     latest session), and each exact solution has its simplified path measured beside it."""
-    prov = json.loads(rb.OMPL_PROVENANCE.read_text())
+    prov = json.loads(STORED.provenance.read_text())
     last = prov["sessions"][-1]
     if "fairness" not in last:
         pytest.skip("the stored runs predate the fairness rule (harness 2): re-run robustness.py --ompl")
     rule = executor.FairnessRule(**{k: v for k, v in last["fairness"].items() if k != "rule"})
     assert rule == executor.FAIRNESS
-    t = rb.read_ompl()
+    t = rb.read_ompl(STORED.csv)
     assert t["cpu_share"].notna().all() and not any(rule.refuses(r) for r in t.to_dict("records"))
     assert t.loc[t["solved"], "simplified_front_length"].notna().all()
-    paths = rb.read_ompl_paths()
+    paths = rb.read_ompl_paths(STORED.paths)
     assert any("+simplify" in k for k in paths) and any("+simplify" not in k for k in paths)
 
 
@@ -319,7 +320,7 @@ def test_run_ompl_stores_fair_runs_and_resumes(tmp_path, monkeypatch):
         return {**row, "poses": [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], "simplified_poses": [[0.0, 0.0, 0.0]]}
 
     monkeypatch.setattr(rb, "ompl_record", fake_record)
-    files = (tmp_path / "o.csv", tmp_path / "p.json.gz", tmp_path / "o.json")
+    files = rb.ompl_files(tmp_path / "o.csv")
     t = rb.run_ompl(jobs, *files, workers=1)
     assert sorted(calls) == sorted(rb.job_id(j) for j in jobs) and len(t) == len(jobs)
     assert np.allclose(t["cpu_share"], 0.95) and (t["attempts"] == 1).all()
@@ -338,3 +339,21 @@ def test_run_ompl_stores_fair_runs_and_resumes(tmp_path, monkeypatch):
     assert calls == [] and len(t2) == len(jobs)  # resumed: nothing run again
     assert last["runs_kept"] == 0
     assert json.loads(files[2].read_text())["sessions"][-1]["runs_kept"] == len(jobs)
+
+
+def test_shipped_modules_read_no_repository_folder():
+    """Issue 24: a module of the package finds nothing through its own path in the repository
+    (``parents[...]`` of ``__file__``): in a wheel those folders do not exist. The stored OMPL
+    side is passed by the caller (:func:`rb.ompl_files`); the hard cases' ``turn_around`` is the
+    shipped scenario, the same floor as the repository's file."""
+    import re
+
+    for f in (ROOT / "segplan").rglob("*.py"):
+        assert not re.search(r"__file__\)?(\.resolve\(\))?\.parents\[", f.read_text()), f
+    assert (
+        STORED.paths.name == "robustness_ompl_paths.json.gz"
+        and STORED.provenance.name == "robustness_ompl.json"
+    )
+    shipped = fl.hard_cases()["turn_around"]
+    repo = fl.hard_cases(ROOT / "scenarios")["turn_around"]
+    assert fl.floor_key(shipped) == fl.floor_key(repo)

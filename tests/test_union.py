@@ -151,3 +151,116 @@ def test_wrap_convention_is_half_open_at_minus_pi():
         assert abs(wrap_fmod(float(a)) - wrap(a)) <= 4e-15
     many = wrap(np.linspace(-10.0, 10.0, 2001))
     assert np.all((many > -math.pi) & (many <= math.pi))
+
+
+# -- the one curvature kernel against the five planners' former copies (issue 24) --------------
+def _random_cubics(rng, shape):
+    """Cubics of random feasible unions (d, headings and alpha drawn wide), each array ``shape``."""
+    from segplan.model.union import cubic_coefficients
+
+    phi0 = rng.uniform(-1.5, 1.5, shape)
+    phi1 = rng.uniform(-1.5, 1.5, shape)
+    lo, hi = alpha_interval(phi0, phi1)
+    ok = hi > lo
+    phi1 = np.where(ok, phi1, -phi0 * 0.5)
+    lo, hi = alpha_interval(phi0, phi1)
+    alpha = lo + rng.uniform(0.001, 0.999, shape) * (hi - lo)
+    d = np.exp(rng.uniform(-3.0, 4.0, shape))
+    return cubic_coefficients(d, phi0, phi1, alpha)
+
+
+def _same_bits(a, b) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()
+
+
+def test_peak_curvature_is_each_planners_sampled_peak_bit_for_bit():
+    """``curvature_samples`` + ``peak_curvature`` give the very bits of the expressions the
+    planners wrote out before issue 24 (literal copies below, each with its caller's shapes):
+    the link model's steering fallback (33 abscissae), the lattice's ``steerable`` screen
+    (7 frames x 17) and the primitives' ``_peaks`` (49)."""
+    from segplan.model.union import curvature_samples, peak_curvature
+
+    rng = np.random.default_rng(24)
+    for _ in range(20):
+        # planning/links.py LinkModel._steer: n alphas x 33 abscissae
+        X, c1, c2, c3 = _random_cubics(rng, (int(rng.integers(1, 40)),))
+        tau = np.linspace(0.0, 1.0, 33)
+        x = X[:, None] * tau
+        fp = c1[:, None] + (2.0 * c2[:, None] + 3.0 * c3[:, None] * x) * x
+        fpp = 2.0 * c2[:, None] + 6.0 * c3[:, None] * x
+        old = np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=1)
+        _, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], tau)
+        assert _same_bits(peak_curvature(fp, fpp, axis=1), old)
+
+        # planning/lattice/approach.py steerable: (n, 7, 1) cubics x (1, 1, 17) abscissae
+        X, c1, c2, c3 = _random_cubics(rng, (int(rng.integers(1, 30)), 7, 1))
+        tau = np.linspace(0.0, 1.0, 17)[None, None, :]
+        x = X * tau
+        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
+        fpp = 2.0 * c2 + 6.0 * c3 * x
+        old = np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=2).min(axis=1)
+        _, fp, fpp = curvature_samples(X, c1, c2, c3, tau)
+        assert _same_bits(peak_curvature(fp, fpp, axis=2).min(axis=1), old)
+
+        # planning/lattice/primitives.py _peaks: (n, k, 1) cubics x 49 abscissae
+        X, c1, c2, c3 = _random_cubics(rng, (int(rng.integers(1, 30)), 3, 1))
+        s = np.linspace(0.0, 1.0, 49)
+        x = X * s
+        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
+        old = np.max(np.abs(2.0 * c2 + 6.0 * c3 * x) / (1.0 + fp * fp) ** 1.5, axis=-1)
+        _, fp, fpp = curvature_samples(X, c1, c2, c3, s)
+        assert _same_bits(peak_curvature(fp, fpp), old)
+
+
+def test_exceeds_curvature_is_each_planners_certain_failure_bit_for_bit():
+    """``curvature_samples`` + ``exceeds_curvature`` against the two screens that compared
+    without dividing: ``Workspace._curvature_ok`` (one union, 17 abscissae, whose ``x``,
+    ``f'`` and ``|f''|`` it reuses) and refine's ``certain_failures`` (n links x 9), with
+    limits drawn at the sampled peak itself, where a last-bit difference would show."""
+    from segplan.model.union import curvature_samples, exceeds_curvature, peak_curvature
+
+    rng = np.random.default_rng(2024)
+    s17 = np.linspace(0.0, 1.0, 17)
+    s9 = np.linspace(0.0, 1.0, 9)
+    for _ in range(300):
+        # planning/validity.py Workspace._curvature_ok: one union, Python floats
+        X, c1, c2, c3 = (float(v) for v in _random_cubics(rng, ()))
+        _, fp, fpp = curvature_samples(X, c1, c2, c3, s17)
+        kmax = float(peak_curvature(fp, fpp)) * float(rng.choice([1.0, 1.0 - 1e-16, 1.0 + 1e-16, 0.5, 2.0]))
+        x = X * s17
+        fp_old = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
+        fpp_old = np.abs(2.0 * c2 + 6.0 * c3 * x)
+        old = np.any(fpp_old > kmax * (1.0 + fp_old * fp_old) ** 1.5)
+        xk, fp, fpp = curvature_samples(X, c1, c2, c3, s17)
+        fpp = np.abs(fpp)
+        assert _same_bits(xk, x) and _same_bits(fp, fp_old) and _same_bits(fpp, fpp_old)
+        assert exceeds_curvature(fp, fpp, kmax) == old
+
+        # planning/refine.py certain_failures: n links x 9 abscissae, x and f' reused
+        X, c1, c2, c3 = _random_cubics(rng, (int(rng.integers(1, 20)),))
+        x = X[:, None] * s9
+        fp_old = c1[:, None] + (2.0 * c2[:, None] + 3.0 * c3[:, None] * x) * x  # f'
+        fpp_old = 2.0 * c2[:, None] + 6.0 * c3[:, None] * x  # f''
+        kmax = float(np.median(np.max(np.abs(fpp_old) / (1.0 + fp_old * fp_old) ** 1.5, axis=1)))
+        old = np.any(np.abs(fpp_old) > kmax * (1.0 + fp_old * fp_old) ** 1.5, axis=1)
+        xk, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], s9)
+        assert _same_bits(xk, x) and _same_bits(fp, fp_old) and _same_bits(fpp, fpp_old)
+        assert _same_bits(exceeds_curvature(fp, fpp, kmax, axis=1), old)
+
+
+def test_peak_curvature_is_a_lower_bound_of_the_exact_maximum():
+    """Sampled peaks never exceed :meth:`Union.max_curvature` (beyond rounding)."""
+    from segplan.model.union import curvature_samples, peak_curvature
+
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        phi0, phi1 = rng.uniform(-1.2, 1.2, 2)
+        lo, hi = alpha_interval(phi0, phi1)
+        if not hi > lo:
+            continue
+        alpha = lo + rng.uniform(0.05, 0.95) * (hi - lo)
+        u = Union(Pose(0.0, 0.0, phi0), Pose(3.0, 0.0, phi1), alpha, 1.0)
+        _, c1, c2, c3 = u.coefficients
+        _, fp, fpp = curvature_samples(u.x_end, c1, c2, c3, np.linspace(0.0, 1.0, 33))
+        assert peak_curvature(fp, fpp) <= u.max_curvature() * (1 + 1e-12)

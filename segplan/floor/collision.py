@@ -90,10 +90,11 @@ false alarms (a contact closer than ``tol``), never into misses.
 
 Counters
 --------
-Every query updates a :class:`CollisionStats` (the caller's ``stats=``, else the module's
-``STATS``), so a benchmark can report checks per second: ``STATS.reset()``, run, then read
-``STATS.calls`` (union-polygon queries), ``STATS.rejected`` (by a quick check),
-``STATS.exact`` and ``STATS.events``.
+A caller who wants counts passes a :class:`CollisionStats` as ``stats=`` and every query
+updates it, so a benchmark can report checks per second: ``stats = CollisionStats()``,
+run, then read ``stats.calls`` (union-polygon queries), ``stats.rejected`` (by a quick
+check), ``stats.exact`` and ``stats.events``. Without ``stats`` nothing is counted: the
+module keeps no state.
 
 Speed
 -----
@@ -118,7 +119,6 @@ from .geometry import TOUCH_RTOL, Bounds, ConvexPolygon, as_polygon, check_bound
 from .sweep import Sweep, as_sweep, corners, cubic_points, hull_axes, quadratic_points
 
 __all__ = [
-    "STATS",
     "CollisionStats",
     "collides",
     "collision_witness",
@@ -162,10 +162,6 @@ class CollisionStats:
     def reset(self) -> None:
         """Set every counter to zero."""
         self.calls = self.rejected = self.exact = self.events = self.collisions = 0
-
-
-STATS = CollisionStats()
-"""Module-level counters, used when a function is not given ``stats``."""
 
 
 # -- exact test ----------------------------------------------------------------------------------
@@ -338,7 +334,7 @@ def _exact(sw: Sweep, poly: ConvexPolygon, tol: float, stats: CollisionStats) ->
 
 
 def _query(union, polygon, check, stats) -> float | None:
-    stats = STATS if stats is None else stats
+    stats = CollisionStats() if stats is None else stats  # counts nobody reads
     sw = as_sweep(union)
     poly = as_polygon(polygon, check)
     stats.calls += 1
@@ -375,7 +371,7 @@ def collides(
         Validate an array polygon (``ValueError`` if malformed); pass ``False`` for
         pre-validated obstacles.
     stats : CollisionStats, optional
-        Counters to update (default: the module's :data:`STATS`).
+        Counters to update (default: none; nothing is counted).
 
     Returns
     -------
@@ -417,8 +413,9 @@ def union_free(
     check : bool
         Validate array polygons.
     stats : CollisionStats, optional
+        Counters to update (default: none; nothing is counted).
     """
-    stats = STATS if stats is None else stats
+    stats = CollisionStats() if stats is None else stats  # counts nobody reads
     sw = as_sweep(union)
     near = []
     for i, p in enumerate(obstacles):

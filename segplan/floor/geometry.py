@@ -57,7 +57,7 @@ import math
 
 import numpy as np
 
-from ..model.pose import as_pose, check_length
+from ..model.pose import TWO_PI, as_pose, check_length
 
 __all__ = [
     "ANGLE_TOL",
@@ -85,7 +85,6 @@ __all__ = [
     "bounds_tolerance",
 ]
 
-TWO_PI = 2.0 * math.pi
 #: Largest arc of the enlargement disk replaced by one tangent edge (radians).
 DEFAULT_MAX_ARC = math.radians(45.0)
 #: Turns within this angle (radians) of 0 or pi count as collinear vertices.

@@ -11,7 +11,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..model.pose import Pose, as_pose
+from ..model.pose import TWO_PI, Pose, as_pose
 from .geometry import (
     check_bounds,
     enlarge_polygon,
@@ -24,8 +24,6 @@ from .geometry import (
 from .scenario import Robot, Scenario, make_scenario
 
 __all__ = ["place_disjoint", "random_convex_polygon", "random_world"]
-
-TWO_PI = 2.0 * math.pi
 
 
 # -- random worlds --------------------------------------------------------------------

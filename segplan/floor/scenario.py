@@ -260,7 +260,7 @@ def make_scenario(
     ------
     ScenarioError
         Naming ``source``: bad robot parameters, poses, bounds (not a proper rectangle,
-        or narrower than the robot), polygons (see :func:`check_convex_polygon`), or a
+        or narrower than the robot), polygons (see :func:`segplan.floor.geometry.check_convex_polygon`), or a
         start or goal that collides with an enlarged obstacle or leaves the free bounds.
     """
     if not isinstance(robot, Robot):

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,9 +26,10 @@ import numpy as np
 from . import constants
 from .pose import alpha_interval, check_length, intrinsic
 from .romberg import romberg
-from .union import chord_slopes, cubic_coefficients
+from .union import Union, chord_slopes, cubic_coefficients
 
 __all__ = [
+    "chain_longd",
     "longd_intrinsic_scalar",
     "BLOCK",
     "K_COEF",
@@ -135,6 +137,42 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
     if full_output:
         return _scalar_or_array(value), _scalar_or_array(error)
     return _scalar_or_array(value)
+
+
+def chain_longd(unions: Iterable[Union], rtol: float, *, from_poses: bool = False) -> float:
+    """Formula [1] of a chain of unions: the sum of each union's Romberg LONGD, in order.
+
+    Section "Cost function": the cost of a path is the length of the front wheel's path,
+    the sum over its unions of [1]. The planners report a plan's ``cost`` so, whatever
+    cost guided their search ([2] inside its domain).
+
+    Parameters
+    ----------
+    unions : iterable of Union
+        The chain, in order (0.0 for none).
+    rtol : float
+        Romberg's relative tolerance for each union (:func:`longd_exact_intrinsic`).
+    from_poses : bool
+        Take each union's intrinsic parameters from its end poses again
+        (:func:`checked_intrinsic`: numpy's ``hypot``, ``arctan2`` and :func:`segplan.model.pose.wrap`)
+        instead of those it was built with (``u.d``, ``u.phi0``, ``u.phi1``); the two may
+        differ in the last bit (a union built by :meth:`Union.from_intrinsic` from the
+        ``math`` module's values). The paper planner and the refinement do so, the lattice
+        planner does not; each keeps its form, so that no plan's cost changes.
+
+    Returns
+    -------
+    float
+        ``((0 + LONGD_1) + LONGD_2) + ...``, added one union at a time.
+    """
+    total = 0.0
+    for u in unions:
+        if from_poses:
+            geo = checked_intrinsic(u.p0, u.p1, u.alpha, u.L)
+        else:
+            geo = (u.d, u.phi0, u.phi1, u.alpha, u.L)
+        total += float(longd_exact_intrinsic(*geo, rtol=rtol))  # [1] by Romberg
+    return total
 
 
 def exact_values(d, phi0, phi1, alpha, L, rtol: float = 1e-6, chunk: int = 1024) -> np.ndarray:

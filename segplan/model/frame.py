@@ -15,7 +15,7 @@ area between trajectory and chord, ``tan(alpha) = (1/m0 + 1/m1) / 2`` in our con
 stationary point of LONGD(alpha) (:func:`segplan.model.frame_exact.parabola_alpha`). Case b
 (same signs, an S-shaped union): the paper's formula was never printed; ours is fitted to
 exact optima by :func:`segplan.fit.heuristic.fit_heuristic` and its coefficients are read
-from the data stored with the package (:func:`heuristic_coefficients`, via
+from the data stored with the package (:data:`HEURISTIC_FIT`, via
 :mod:`segplan.model.constants`). :func:`segplan.studies.frames.heuristic_error_study` measures
 both against the exact optimum.
 """
@@ -34,6 +34,7 @@ from .frame_exact import exact_alpha_intrinsic, mbar_max, parabola_alpha
 from .pose import HALF_PI, alpha_interval, check_length, intrinsic
 
 __all__ = [
+    "HEURISTIC_FIT",
     "HeuristicFit",
     "case_b_alpha",
     "heuristic_alpha",
@@ -128,19 +129,34 @@ def _features(phi0, phi1, ell, degree):
 
 
 # -- heuristic algorithm ----------------------------------------------------------------
-_FIT_CACHE: dict = {}
+def _stored_fit() -> HeuristicFit:
+    fit = HeuristicFit.from_values(constants.heuristic_frame())
+    fit.coef.flags.writeable = False
+    return fit
+
+
+#: The case-b coefficients stored with the package, read once at import (an immutable value:
+#: a read-only array in a tuple). Fitted by :func:`segplan.fit.heuristic.fit_heuristic` with
+#: its defaults (396 exact optima) and written to the data file by ``python -m segplan.fit``.
+HEURISTIC_FIT = _stored_fit()
+
+
+def _fit_terms(fit: HeuristicFit) -> tuple[tuple[float, int, int, int], ...]:
+    """``(c_ijk, i, j, k)`` of a fit as plain Python numbers (the scalar path's form)."""
+    return tuple((c, *e) for c, e in zip(fit.coef.tolist(), fit.exponents(), strict=True))
+
+
+#: :data:`HEURISTIC_FIT`'s terms, for the scalar path (another fit's are made per call).
+_HEURISTIC_TERMS = _fit_terms(HEURISTIC_FIT)
 
 
 def heuristic_coefficients() -> HeuristicFit:
-    """The case-b coefficients stored with the package (read once, cached in memory).
+    """The case-b coefficients stored with the package: :data:`HEURISTIC_FIT`.
 
-    Fitted by :func:`segplan.fit.heuristic.fit_heuristic` with its defaults (396 exact
-    optima) and written to the data file by ``python -m segplan.fit``; no coefficient is
+    Read from the data file at import (:mod:`segplan.model.constants`); no coefficient is
     typed in, and nothing is fitted at run time.
     """
-    if "fit" not in _FIT_CACHE:
-        _FIT_CACHE["fit"] = HeuristicFit.from_values(constants.heuristic_frame())
-    return _FIT_CACHE["fit"]
+    return HEURISTIC_FIT
 
 
 def inside(alpha, phi0, phi1, margin=1e-3):
@@ -170,7 +186,7 @@ def case_b_alpha(phi0, phi1, d_over_L, fit=None):
 
     Vectorised; requires ``phi0 * phi1 >= 0`` (case b, or a zero slope), not both zero.
     """
-    fit = heuristic_coefficients() if fit is None else fit
+    fit = HEURISTIC_FIT if fit is None else fit
     phi0, phi1, d_over_L = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (phi0, phi1, d_over_L)))
     sign = np.where(phi0 + phi1 < 0.0, -1.0, 1.0)  # mirror negative slopes
     a0, a1 = sign * phi0, sign * phi1
@@ -221,7 +237,7 @@ def heuristic_alpha(d, phi0, phi1, L, fit=None, margin=1e-3):
         Chord length, intrinsic headings (radians) and robot length, validated by the
         caller (see :func:`optimal_alpha_intrinsic`).
     fit : HeuristicFit, optional
-        Case-b coefficients; default :func:`heuristic_coefficients`.
+        Case-b coefficients; default :data:`HEURISTIC_FIT`.
     margin : float
         Relative distance kept from the ends of the interval.
     """
@@ -267,12 +283,8 @@ def _mbar_scalar(phi0, phi1, alpha):
 
 
 def _terms(fit):
-    """``(c_ijk, i, j, k)`` of a fit as plain Python numbers (cached per fit object)."""
-    cached = _FIT_CACHE.get("terms")
-    if cached is None or cached[0] is not fit:
-        cached = (fit, [(c, *e) for c, e in zip(fit.coef.tolist(), fit.exponents(), strict=True)])
-        _FIT_CACHE["terms"] = cached
-    return cached[1]
+    """``(c_ijk, i, j, k)`` of a fit: the stored fit's, made at import, else made now."""
+    return _HEURISTIC_TERMS if fit is HEURISTIC_FIT else _fit_terms(fit)
 
 
 def _case_b_scalar(phi0, phi1, d_over_L, fit):
@@ -295,7 +307,7 @@ def _case_b_scalar(phi0, phi1, d_over_L, fit):
 
 def _heuristic_scalar(d_over_L, phi0, phi1, fit, margin):
     """Scalar :func:`heuristic_alpha` (same rules, plain floats)."""
-    fit = heuristic_coefficients() if fit is None else fit
+    fit = HEURISTIC_FIT if fit is None else fit
     if phi0 == 0.0 and phi1 == 0.0:
         return _inside_scalar(0.0, phi0, phi1, margin)
     if math.sin(phi0) * math.sin(phi1) >= 0.0:

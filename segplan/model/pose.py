@@ -4,15 +4,21 @@ Section "Mobile robot modelling": the robot is the segment from A (middle of the
 axle) to B (middle of the front wheel), of length ``L``. A node of the search graph is a
 pose ``(x, y, theta)``: A in world coordinates and the heading of A->B, radians,
 counter-clockwise from +x. Angle differences are wrapped to ``(-pi, pi]`` (:func:`wrap`,
-the one convention of the package).
+the package's convention).
 
-Section "Approximate computation of cost function", Fig. 3: the *intrinsic reference
-system* of two nodes has its origin at the start point and its x-axis through the end
-point (the chord, of length ``d``, at world angle ``psi``). An *alpha reference system*
-has the same origin and its x-axis at world angle ``psi - alpha``, so the chord makes the
-angle ``+alpha`` with it. The cubic of the union exists in that frame only while x grows
-from start to end and both end slopes are finite: ``|alpha| < pi/2`` and
-``|phi_i + alpha| < pi/2`` with ``phi_i`` the intrinsic headings.
+Angle wrapping has its one home here. The forms below are not duplicates: they round
+differently or differ at ``+-pi``, and the planners' plans depend on their last bits, so
+each caller keeps its own (issue 24):
+
+======================= ============== ================================================
+function                interval       arithmetic
+======================= ============== ================================================
+:func:`wrap`            ``(-pi, pi]``  ``a - 2 pi round(a / 2 pi)``, then fold (numpy)
+:func:`wrap_scalar`     ``(-pi, pi]``  the same operations on one float (its fast path)
+:func:`wrap_fmod`       ``(-pi, pi]``  ``fmod(a + pi, 2 pi)`` (exact), then shift
+:func:`wrap_ieee`       ``[-pi, pi]``  IEEE ``remainder(a, 2 pi)`` (exact; ``-pi`` stays)
+:func:`wrap_floor`      ``[-pi, pi)``  ``(a + pi) mod 2 pi - pi`` (numpy, floor modulo)
+======================= ============== ================================================
 """
 
 from __future__ import annotations
@@ -24,11 +30,14 @@ from typing import NamedTuple
 import numpy as np
 
 HALF_PI = 0.5 * math.pi
+#: A full turn, ``2 pi`` (radians).
+TWO_PI = 2.0 * math.pi
 
 __all__ = [
     "wrap_fmod",
     "wrap_scalar",
     "HALF_PI",
+    "TWO_PI",
     "Intrinsic",
     "Pose",
     "alpha_interval",
@@ -41,6 +50,8 @@ __all__ = [
     "intrinsic",
     "intrinsic_interval",
     "wrap",
+    "wrap_floor",
+    "wrap_ieee",
 ]
 
 
@@ -81,8 +92,8 @@ def wrap(angle):
     scalar form (equal but for the last bit).
     """
     a = np.asarray(angle, dtype=float)
-    a = a - (2.0 * math.pi) * np.round(a / (2.0 * math.pi))  # in [-pi, pi] up to rounding
-    a = np.where(a <= -math.pi, a + 2.0 * math.pi, np.where(a > math.pi, a - 2.0 * math.pi, a))
+    a = a - TWO_PI * np.round(a / TWO_PI)  # in [-pi, pi] up to rounding
+    a = np.where(a <= -math.pi, a + TWO_PI, np.where(a > math.pi, a - TWO_PI, a))
     return float(a) if np.ndim(a) == 0 else a
 
 
@@ -171,10 +182,10 @@ def intrinsic(p0, p1) -> Intrinsic:
 
 def wrap_scalar(a: float) -> float:
     """:func:`wrap` of one float, the same operations (``round`` halves to even like numpy's)."""
-    a = a - (2.0 * math.pi) * round(a / (2.0 * math.pi))
+    a = a - TWO_PI * round(a / TWO_PI)
     if a <= -math.pi:
-        return a + 2.0 * math.pi
-    return a - 2.0 * math.pi if a > math.pi else a
+        return a + TWO_PI
+    return a - TWO_PI if a > math.pi else a
 
 
 def arc_end(x: float, y: float, theta: float, radius: float, side: float, turn: float):
@@ -199,10 +210,30 @@ def wrap_fmod(a: float) -> float:
     is sensitive to the last bit of a heading (a tie between two successors), and its
     published numbers in the book were computed with it, so it stays.
     """
-    a = math.fmod(a + math.pi, 2.0 * math.pi)
+    a = math.fmod(a + math.pi, TWO_PI)
     if a <= 0.0:
-        a += 2.0 * math.pi
+        a += TWO_PI
     return a - math.pi
+
+
+def wrap_ieee(a: float) -> float:
+    """One float wrapped to ``[-pi, pi]`` by the IEEE remainder, ``math.remainder(a, 2 pi)``.
+
+    Exact (no rounding at all), but ``-pi`` stays ``-pi`` and a result may be either end:
+    not :func:`wrap`'s convention. The lattice planner's headings and the LONGD heuristic's
+    fallback bound (:class:`segplan.planning.paper.problem.Problem`) use it.
+    """
+    return math.remainder(a, TWO_PI)
+
+
+def wrap_floor(a):
+    """Angles wrapped to ``[-pi, pi)`` by ``np.remainder(a + pi, 2 pi) - pi`` (vectorised).
+
+    Floor-division modulo (the sign of ``2 pi``), after rounding ``a + pi``: ``+pi`` maps
+    to ``-pi``, and a tiny negative ``a + pi`` may round to ``+pi`` itself. The lattice
+    planner's screens (``steerable``, the guide's heading test) use it.
+    """
+    return np.remainder(a + math.pi, TWO_PI) - math.pi
 
 
 def _intrinsic_scalar(p0, p1) -> Intrinsic | None:

@@ -25,7 +25,14 @@ import numpy as np
 
 from .pose import Pose, as_pose, check_alpha, check_length, intrinsic
 
-__all__ = ["Union", "chord_slopes", "cubic_coefficients"]
+__all__ = [
+    "Union",
+    "chord_slopes",
+    "cubic_coefficients",
+    "curvature_samples",
+    "exceeds_curvature",
+    "peak_curvature",
+]
 
 
 def chord_slopes(phi0, phi1, alpha):
@@ -52,6 +59,65 @@ def cubic_coefficients(d, phi0, phi1, alpha):
     c2 = -(2.0 * m0 + m1) / X  # from f(X) = X tan(alpha), f'(X) = tan(phi1 + alpha)
     c3 = (m0 + m1) / X**2
     return X, c1, c2, c3
+
+
+# -- the rear path's curvature at sample abscissae ------------------------------------------
+def curvature_samples(X, c1, c2, c3, s):
+    """Abscissae ``x = X s`` and the cubic's ``f'(x)``, ``f''(x)`` there (vectorised).
+
+    The one sampling kernel of the steering limit's screens: :func:`peak_curvature` and
+    :func:`exceeds_curvature` reduce its output. The rear point A follows
+    ``f(x) = c1 x + c2 x^2 + c3 x^3`` (:func:`cubic_coefficients`); the planners sample it
+    at fractions ``s`` of its span ``X`` (17, 33, 7 frames x 17, 49 or 9 abscissae, each
+    caller its own). ``X, c1, c2, c3`` broadcast against ``s`` as the caller shapes them
+    (``X[:, None]`` against ``s`` of shape ``(m,)`` samples each of ``n`` cubics at ``m``
+    abscissae); the arithmetic, in this order, is every planner's, to the last bit.
+
+    Returns
+    -------
+    x, fp, fpp : ndarray
+        ``x = X s``, ``f'(x)`` and ``f''(x)``.
+    """
+    x = X * s
+    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x  # f'(x) = c1 + 2 c2 x + 3 c3 x^2
+    fpp = 2.0 * c2 + 6.0 * c3 * x  # f''(x) = 2 c2 + 6 c3 x
+    return x, fp, fpp
+
+
+def peak_curvature(fp, fpp, axis=-1):
+    """Largest sampled ``|kappa|`` of the rear path, from :func:`curvature_samples`.
+
+    The curvature of a graph ``y = f(x)`` is ``kappa = f'' / (1 + f'^2)^(3/2)``: the
+    heading is ``theta = arctan f'``, so ``d theta / dx = f'' / (1 + f'^2)``, and the arc
+    length grows as ``ds / dx = (1 + f'^2)^(1/2)``; ``kappa = d theta / ds`` is their
+    quotient. Section "Mobile robot modelling": the robot is tangent to the rear path
+    ("the robot orientation ... is always tangent to trajectories"), a bicycle whose
+    front wheel steers by ``arctan(L kappa)``; a steering angle at most ``max_steer``
+    bounds ``|kappa|`` by ``tan(max_steer) / L`` (:attr:`segplan.floor.scenario.Robot.max_curvature`).
+    That limit is ours (the paper's robot has none); the planners keep every union within
+    it. A sampled maximum is a lower bound of the true one (:meth:`Union.max_curvature`).
+
+    Returns
+    -------
+    ndarray
+        ``max |f''| / (1 + f'^2)^(3/2)`` over ``axis``.
+    """
+    return np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=axis)  # max |kappa|
+
+
+def exceeds_curvature(fp, fpp, kappa_max, axis=-1):
+    """Does a sample break the steering limit, ``|kappa| > kappa_max``? (a certain failure).
+
+    The same test as ``peak_curvature(fp, fpp) > kappa_max`` without the division:
+    ``|f''| > kappa_max (1 + f'^2)^(3/2)`` (see :func:`peak_curvature`), which may differ
+    from it in the last bit; planners that screened this way keep doing so.
+
+    Returns
+    -------
+    bool or ndarray
+        ``any(|f''| > kappa_max (1 + f'^2)^(3/2))`` over ``axis``.
+    """
+    return np.any(np.abs(fpp) > kappa_max * (1.0 + fp * fp) ** 1.5, axis=axis)
 
 
 class Union:

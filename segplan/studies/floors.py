@@ -53,7 +53,7 @@ import numpy as np
 from ..floor.geometry import enlarge_polygon, pose_collides, pose_in_bounds
 from ..floor.random_floors import place_disjoint
 from ..floor.scenario import Robot, Scenario, load_scenario, make_scenario
-from ..model.pose import wrap_scalar
+from ..model.pose import TWO_PI, wrap_scalar
 
 __all__ = [
     "GENERATOR_VERSION",
@@ -119,14 +119,14 @@ def random_obstacle(rng: np.random.Generator, center) -> np.ndarray:
     """A rectangle (sides 0.5-3 m) or a regular polygon (3-8 vertices, circumradius
     0.4-1.5 m), equally likely, at a uniform rotation about ``center``; counter-clockwise."""
     c = np.asarray(center, dtype=float)
-    rot = rng.uniform(0.0, 2.0 * math.pi)
+    rot = rng.uniform(0.0, TWO_PI)
     if rng.random() < 0.5:
         w, h = rng.uniform(0.5, 3.0, 2)
         local = 0.5 * np.array([[-w, -h], [w, -h], [w, h], [-w, h]])
     else:
         k = int(rng.integers(3, 9))
         r = rng.uniform(0.4, 1.5)
-        a = np.arange(k) * (2.0 * math.pi / k)
+        a = np.arange(k) * (TWO_PI / k)
         local = r * np.column_stack((np.cos(a), np.sin(a)))
     cs, sn = math.cos(rot), math.sin(rot)
     return np.round(c + local @ np.array([[cs, sn], [-sn, cs]]), _DIGITS)
@@ -290,7 +290,8 @@ def hard_cases(scenario_dir: str | Path | None = None) -> dict[str, Scenario]:
     Parameters
     ----------
     scenario_dir : path, optional
-        Where ``turn_around.json`` is (default: the repository's ``scenarios/``).
+        Where ``turn_around.json`` is (default: the shipped scenario, ``load_scenario("turn_around")``,
+        read from the installed package).
 
     Returns
     -------
@@ -381,9 +382,11 @@ def hard_cases(scenario_dir: str | Path | None = None) -> dict[str, Scenario]:
             "The goal's box has a slit 0.5 m wide, closed by the enlargement (2 x 0.3 m): no plan exists.",
         ),
     ]
-    d = Path(__file__).resolve().parents[2] / "scenarios" if scenario_dir is None else Path(scenario_dir)
     out = {sc.name: sc for sc in cases}
-    out["turn_around"] = load_scenario(d / "turn_around.json")
+    if scenario_dir is None:
+        out["turn_around"] = load_scenario("turn_around")  # shipped with the package
+    else:
+        out["turn_around"] = load_scenario(Path(scenario_dir) / "turn_around.json")
     return out
 
 

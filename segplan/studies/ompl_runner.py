@@ -88,6 +88,7 @@ import numpy as np
 
 from ..floor.geometry import as_polygon, pose_collides, pose_in_bounds
 from ..floor.scenario import Scenario, load_scenario, scenario_from_dict
+from ..model.pose import TWO_PI, wrap_floor
 from ..viz.metrics import PathMetrics, measure_scenario_path, se2_poses
 from .executor import FAIRNESS, FairnessRule
 
@@ -141,10 +142,13 @@ def ompl_heading(theta: float) -> float:
     OMPL rejects a start heading of exactly ``+pi`` as out of bounds. ``x % (2 pi)`` can
     round up to ``2 pi`` itself for tiny negative ``x``; the result is folded back.
     """
-    a = (float(theta) + math.pi) % (2.0 * math.pi) - math.pi
+    t = float(theta)
+    if not math.isfinite(t):
+        raise ValueError(f"theta must be a finite angle, got {theta!r}")
+    a = float(wrap_floor(t))  # (theta + pi) mod 2 pi - pi
     if a >= math.pi:
-        a -= 2.0 * math.pi
-    if not -math.pi <= a < math.pi or not math.isfinite(a):
+        a -= TWO_PI
+    if not -math.pi <= a < math.pi:
         raise ValueError(f"theta must be a finite angle, got {theta!r}")
     return a
 

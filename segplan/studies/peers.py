@@ -165,7 +165,8 @@ def ompl_method(planner: str, simplified: bool = False) -> str:
 def solve_segplan(
     scenario, heuristic: str = "a", repeats: int = SEGPLAN_REPEATS, step: float = STEP, refine: bool = False
 ) -> dict:
-    """segplan on a scenario: a row like :func:`solve_ompl`'s (``method``: :func:`segplan_method`).
+    """segplan on a scenario: a row like those of :func:`segplan.studies.ompl_runner.solve_ompl`
+    (``method``: :func:`segplan_method`).
 
     ``refine=True`` plans with :func:`segplan.refine` after the search (beyond the
     paper; ``seconds`` counts both).
@@ -335,7 +336,7 @@ def run_ompl(
     Returns
     -------
     table : pandas.DataFrame
-        One row per run (:func:`solve_ompl`'s fields, ``messages``, ``cpu_share``,
+        One row per run (:func:`segplan.studies.ompl_runner.solve_ompl`'s fields, ``messages``, ``cpu_share``,
         ``attempts``), without the poses; the simplified path's measures in the
         ``simplified_*`` columns (:func:`simplified_rows` turns them into rows).
     paths : dict

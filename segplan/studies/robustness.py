@@ -5,8 +5,9 @@ floors of each heading kind (``any``, ``natural``), the hard cases, six 160 x 96
 with 512 obstacles, and a size sweep (:func:`sweep_floors`). Both sides are measured by
 :func:`segplan.viz.metrics.measure_scenario_path` (front-wheel length; the dense oracle).
 
-**OMPL** (optional dependency; slow, run once and stored by :func:`run_ompl` in
-:data:`OMPL_CSV`, :data:`OMPL_PATHS`, :data:`OMPL_PROVENANCE`): BIT* on the Dubins space of
+**OMPL** (optional dependency; slow, run once and stored by :func:`run_ompl` in the three
+files of :func:`ompl_files`, in the repository's ``benchmarks/results/``; not shipped with the
+package, so every reader is given their place): BIT* on the Dubins space of
 radius ``L / tan(max_steer)`` at 2 and 5 s, chapter 8's set-up, one process per run through
 the one executor (:mod:`segplan.studies.executor`: one run per free core, a run starved of
 CPU refused and run again, resumable); on ``turn_around`` also RRT* and Informed RRT*. It
@@ -42,6 +43,7 @@ import time
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -59,9 +61,9 @@ from .verdicts import Target, meet, targets_table
 __all__ = [
     "BUDGETS",
     "MAX_EXPANSIONS",
-    "OMPL_CSV",
-    "OMPL_PATHS",
-    "OMPL_PROVENANCE",
+    "OMPL_CSV_NAME",
+    "OmplFiles",
+    "ompl_files",
     "REFERENCE_BUDGET",
     "SLOW_SECONDS",
     "SUBSET_RANDOM",
@@ -90,11 +92,26 @@ __all__ = [
     "warm_up",
 ]
 
-#: The stored OMPL side, in the repository's ``benchmarks/results/``.
-RESULTS = Path(__file__).resolve().parents[2] / "benchmarks" / "results"
-OMPL_CSV = RESULTS / "robustness_ompl.csv"
-OMPL_PATHS = RESULTS / "robustness_ompl_paths.json.gz"
-OMPL_PROVENANCE = RESULTS / "robustness_ompl.json"
+#: File name of the stored OMPL runs in the repository's ``benchmarks/results/`` (not in the
+#: wheel); :func:`ompl_files` names the two files beside it.
+OMPL_CSV_NAME = "robustness_ompl.csv"
+
+
+class OmplFiles(NamedTuple):
+    """The stored OMPL side: runs (CSV), paths at the reference budget, provenance."""
+
+    csv: Path
+    paths: Path
+    provenance: Path
+
+
+def ompl_files(csv: str | Path) -> OmplFiles:
+    """The stored OMPL side of the runs in ``csv``: the paths beside it
+    (``<stem>_paths.json.gz``) and the provenance (``<stem>.json``); for the repository's,
+    ``ompl_files(root / "benchmarks" / "results" / OMPL_CSV_NAME)``."""
+    csv = Path(csv)
+    return OmplFiles(csv, csv.with_name(csv.stem + "_paths.json.gz"), csv.with_suffix(".json"))
+
 
 #: BIT*'s budgets (s): the feasibility oracle and the length reference (the largest).
 BUDGETS = (2.0, 5.0)
@@ -254,7 +271,7 @@ def ompl_record(job: tuple, resolution: float = om.RESOLUTION) -> dict:
     return row
 
 
-def read_ompl(path: str | Path = OMPL_CSV) -> pd.DataFrame:
+def read_ompl(path: str | Path) -> pd.DataFrame:
     """The stored OMPL runs (empty frame with :data:`OMPL_COLUMNS` if none); ``solved``,
     ``valid`` and ``simplified_valid`` as booleans. Columns a file written before harness
     version 3 lacks (CPU share, load, the simplified path) are NaN (``simplified_valid``
@@ -270,7 +287,7 @@ def read_ompl(path: str | Path = OMPL_CSV) -> pd.DataFrame:
     return t
 
 
-def read_ompl_paths(path: str | Path = OMPL_PATHS) -> dict[str, np.ndarray]:
+def read_ompl_paths(path: str | Path) -> dict[str, np.ndarray]:
     """Stored OMPL paths at the reference budget, by :func:`job_id` (the simplified path of a
     run by its id with the planner ``"<planner> +simplify"``)."""
     out = {}
@@ -322,9 +339,9 @@ def _stored_records(out: Path, paths_out: Path, jobs: list[tuple], rule: Fairnes
 
 def run_ompl(
     jobs: list[tuple],
-    out: str | Path = OMPL_CSV,
-    paths_out: str | Path = OMPL_PATHS,
-    provenance: str | Path = OMPL_PROVENANCE,
+    out: str | Path,
+    paths_out: str | Path,
+    provenance: str | Path,
     workers: int | None = None,
     scheduler=None,
     rule: FairnessRule = FAIRNESS,
