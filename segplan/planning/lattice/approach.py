@@ -1,8 +1,8 @@
 """The goal's approach tree of the lattice planner (beyond the paper).
 
-The lattice of :mod:`segplan.planning.lattice.search` is laid out in the start's frame, so the goal is
-in general off the lattice, and a goal in a pocket may admit no direct union from any
-lattice state. :class:`GoalApproaches` grows a small tree backwards from the goal: a
+The lattice of the search (:mod:`segplan.planning.lattice.astar`) is laid out in the start's
+frame, so the goal is in general off the lattice, and a goal in a pocket may admit no direct
+union from any lattice state. :class:`GoalApproach` grows a small tree backwards from the goal: a
 lattice in the goal's own frame, whose states reach the goal exactly by chains of
 primitives (every edge screened on the clearance grid and, where unsure, checked by the
 certified test when its state is settled: as the search's, :mod:`segplan.planning.lattice.edges`).
@@ -10,15 +10,16 @@ Expanded states near the goal then try unions to the most promising of these *ap
 states* (``g`` + Dubins length + the approach's cost), and a success
 puts the goal in the open list with the whole chain.
 
-**A goal that looks enclosed** (:meth:`GoalApproaches.enclosed`): when the tree runs out
-of states, or after :data:`ENCLOSURE_AFTER` expansions without a plan a flood fill over
-the grid's screen alone finds at most :data:`ENCLOSURE_LIMIT` states that reach the goal
+**A goal that looks enclosed** (:meth:`GoalApproach.enclosed`): when the tree runs out
+of states, or after ``enclosure_after`` expansions without a plan a flood fill over the
+grid's screen alone finds at most ``enclosure_limit`` states that reach the goal
 by primitives (4 times as many at half the cell, and more for a robot that turns wider
 than ``L``), and no free union joins the start to one of them, the goal can be reached
 neither by that lattice's primitives nor by a union from the start. A union from a state
 of the start's lattice might still reach it, so this is no proof: the search goes on for
-:data:`ENCLOSED_EXPANSIONS` expansions, then stops with ``reason="expansions"`` and says
-why. A goal a few decimetres in front of a wall, facing away from it, looks so (and is).
+``enclosed_expansions`` expansions, then stops with ``reason="expansions"`` and says
+why (the counts: :class:`segplan.planning.lattice.schedule.Schedule`). A goal a few
+decimetres in front of a wall, facing away from it, looks so (and is).
 """
 
 from __future__ import annotations

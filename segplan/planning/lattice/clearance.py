@@ -3,8 +3,8 @@
 :class:`ClearanceGrid` holds, per square cell, a lower bound of the distance to the
 enlarged obstacles and walls and whether the cell lies wholly inside one;
 :class:`DistanceField` holds a lower bound of the length of the rear point's path to the
-goal that knows the obstacles. Both serve :mod:`segplan.planning.lattice.search`; neither decides that a
-union is free where it is unsure: the package's certified test does
+goal that knows the obstacles. Both serve the A* (:mod:`segplan.planning.lattice.astar`);
+neither decides that a union is free where it is unsure: the package's certified test does
 (:meth:`segplan.planning.validity.Workspace.colliding`).
 """
 
@@ -356,8 +356,8 @@ MAX_CELLS = 2.0e6
 def grid_resolutions(
     scenario: Scenario, tries: list[float], cell: float | None, margin: float, free_resolution: bool
 ) -> tuple[list[float], float]:
-    """Resolutions for :mod:`segplan.planning.lattice.search` to try and the clearance grid's cell (which must
-    divide each of them).
+    """Resolutions for the planner (:mod:`segplan.planning.lattice.search`) to try and the
+    clearance grid's cell (which must divide each of them).
 
     By default the cell is half the finest resolution but not below ``L / 16``; where the
     grid would exceed :data:`MAX_CELLS` (an estimate from the floor's size, any rotation), the

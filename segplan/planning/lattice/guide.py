@@ -1,6 +1,6 @@
 """A heading-aware cost-to-go over a coarse lattice: the lattice planner's guide on hard floors.
 
-Beyond the paper (issue 12). The lattice search's ``h'`` (:mod:`segplan.planning.lattice.search`) is the
+Beyond the paper (issue 12). The lattice search's ``h'`` (:mod:`segplan.planning.lattice.astar`) is the
 larger of two bounds: the Dubins length (knows the heading, not the obstacles) and the
 :class:`segplan.planning.lattice.clearance.DistanceField` (knows the obstacles, not the heading). Where the
 goal must be reached by a loop around obstacles, both lie far below the true cost, and A*

@@ -45,7 +45,7 @@ stored sets (:func:`selection_margins`; ``tests/test_primitives_data.py``).
 Every primitive also carries points of its swept segment (rear point A, front wheel B and
 points between them, at abscissae along the union) relative to its start, and ``delta``:
 every point of the swept segment lies within ``delta`` of one of them. A planner screens
-a primitive by these points (:mod:`segplan.planning.lattice.search`).
+a primitive by these points (:mod:`segplan.planning.lattice.astar`).
 """
 
 from __future__ import annotations

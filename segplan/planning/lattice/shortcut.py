@@ -1,8 +1,8 @@
 """Greedy shortcuts of a lattice plan (beyond the paper): fewer, longer unions, same corridor.
 
-A plan of :mod:`segplan.planning.lattice.search` has a node every few tenths of a metre (its motion
-primitives are short unions). :func:`shortcut_plan` replaces runs of them by single
-unions of the paper's kind (formula [1] cost, optimal frame, steering limit) where one
+A plan of the lattice's A* (:mod:`segplan.planning.lattice.astar`) has a node every few
+tenths of a metre (its motion primitives are short unions). :func:`shortcut_plan` replaces
+runs of them by single unions of the paper's kind (formula [1] cost, optimal frame, steering limit) where one
 is free and no longer, before :mod:`segplan.planning.refine` polishes the plan.
 """
 
