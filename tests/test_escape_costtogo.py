@@ -11,6 +11,7 @@ sin(theta) dtheta`` with ``ds >= R |dtheta|``), so a start whose front wheel is 
 wall than that admits no forward plan to a goal behind it, escapes or not.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -18,6 +19,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from load_file import ROOT, load_file
+from test_lattice_parts import astar_of, plan_of
 
 import segplan.planning.lattice.search as lattice_module
 from segplan import (
@@ -31,15 +33,16 @@ from segplan import (
 from segplan.planning.dubins import dubins_length_scalar
 from segplan.planning.lattice.clearance import ClearanceGrid
 from segplan.planning.lattice.escape import (
-    IMPROVE_GAP,
     RADIUS_FACTORS,
     STEP,
     TURNS,
     improve_with_arcs,
     tight_arcs,
 )
-from segplan.planning.lattice.guide import FINER_CELLS, GUIDE_AFTER, Guided, HeadingField
-from segplan.planning.lattice.primitives import heading_angles, max_reach
+from segplan.planning.lattice.frame import heading_angles
+from segplan.planning.lattice.guide import FINER_CELLS, Guide, HeadingField, turns_tighter
+from segplan.planning.lattice.primitives import max_reach
+from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.lattice.search import lattice_search, plan_lattice
 from segplan.planning.links import LinkModel
 from segplan.planning.plan import union_longd, unions_longd
@@ -251,7 +254,7 @@ def test_improve_with_arcs_turns_under_the_obstacle_on_any_166():
     sc = floors.random_floor("any", 166)
     lattice_only, _ = lattice_search(sc, escapes=False)
     dubins = dubins_length_scalar(*sc.start, *sc.goal, R)
-    assert lattice_only.cost > IMPROVE_GAP * dubins  # the condition for trying the arcs
+    assert lattice_only.cost > SCHEDULE.improve_gap * dubins  # the condition for trying the arcs
     improved, _ = lattice_search(sc)
     assert "arc" in improved.kinds
     assert improved.cost < lattice_only.cost
@@ -265,7 +268,7 @@ def test_improve_with_arcs_returns_a_plan_near_the_dubins_length_unchanged():
     sc = floors.hard_cases()["door"]
     ws = _workspace(sc)
     plan, _ = lattice_search(sc, escapes=False, workspace=ws)
-    assert plan.cost <= IMPROVE_GAP * dubins_length_scalar(*sc.start, *sc.goal, R)
+    assert plan.cost <= SCHEDULE.improve_gap * dubins_length_scalar(*sc.start, *sc.goal, R)
     assert improve_with_arcs(sc, ws, plan, 0.0) is plan
     again, _ = lattice_search(sc)
     assert [(u.p0, u.p1, u.alpha) for u in again.unions] == [(u.p0, u.p1, u.alpha) for u in plan.unions]
@@ -353,10 +356,6 @@ def test_heading_field_is_infinite_beyond_a_wall_across_the_room(width):
     assert np.isfinite(field.table[X > 10.0 + width / 2 + ROBOT.half_width]).any()
 
 
-class _Search(Guided):
-    """The guide's methods without a search."""
-
-
 def test_a_state_without_a_coarse_route_ranks_after_every_state_with_one():
     """Where the field is infinite, the guided h' is the bound plus the field's largest finite
     value: above every finite estimate, so A* (equal g) expands such a state after them."""
@@ -366,17 +365,17 @@ def test_a_state_without_a_coarse_route_ranks_after_every_state_with_one():
     finite = field.table[np.isfinite(field.table)]
     assert finite.size and field.worst == finite.max()
 
-    search = _Search()
-    assert search.guided(0.0, 0.0, 0, 3.0) == 3.0  # no field built: the bound
-    search.ctg = field
+    guide = Guide(None, sc.robot, None)  # no grid: the field is handed to it
+    assert guide.raise_bound(0.0, 0.0, 0, 3.0) == 3.0  # no field built: the bound
+    guide.field = field
     assert field.estimate(0.0, 0.0, 0) == math.inf  # the start's side of the wall
     for bound in (0.0, 3.0, 11.5):
-        assert search.guided(0.0, 0.0, 0, bound) == bound + field.worst >= finite.max()
+        assert guide.raise_bound(0.0, 0.0, 0, bound) == bound + field.worst >= finite.max()
     x, y = 12.0, 1.0  # the goal's side of the wall (lattice frame): the estimate, or a larger bound
     e = field.estimate(x, y, 0)
     assert math.isfinite(e)
-    assert search.guided(x, y, 0, 0.0) == e
-    assert search.guided(x, y, 0, e + 1.0) == e + 1.0
+    assert guide.raise_bound(x, y, 0, 0.0) == e
+    assert guide.raise_bound(x, y, 0, e + 1.0) == e + 1.0
 
 
 def _wide_floor():
@@ -396,13 +395,11 @@ def test_a_robot_that_turns_widely_gets_the_finer_coarse_field():
     finer, _ = _field(sc, FINER_CELLS)
     assert coarse.estimate(0.0, 0.0, 0) == math.inf
     assert math.isfinite(finer.estimate(0.0, 0.0, 0))
-    search = _Search()
-    search.robot = wide
-    assert search._tighter(wide.L / 2, wide.L / FINER_CELLS)
-    search.robot = ROBOT  # the default robot's two lattices turn alike: no finer field
-    assert not search._tighter(ROBOT.L / 2, ROBOT.L / FINER_CELLS)
+    assert turns_tighter(wide, wide.L / 2, wide.L / FINER_CELLS)
+    # the default robot's two lattices turn alike: no finer field
+    assert not turns_tighter(ROBOT, ROBOT.L / 2, ROBOT.L / FINER_CELLS)
     plan, _ = lattice_search(sc, max_expansions=1000, time_limit=60.0)  # expansions decide
-    assert GUIDE_AFTER < plan.expanded < 1000
+    assert SCHEDULE.guide_after < plan.expanded < 1000
     _assert_valid(plan, sc)
     # the guide's length estimate from the start is close to the plan's LONGD
     assert 0.8 * plan.cost < finer.estimate(0.0, 0.0, 0) < 1.2 * plan.cost
@@ -417,13 +414,15 @@ def test_escapes_must_be_a_bool(bad):
 
 
 # -- 6. the guide -----------------------------------------------------------------------------
-def test_the_guide_solves_any_6_in_few_expansions(monkeypatch):
+def test_the_guide_solves_any_6_in_few_expansions():
     sc = floors.random_floor("any", 6)
     plan = plan_lattice(sc, max_expansions=1000, time_limit=60.0)  # the expansions decide, not time
-    assert GUIDE_AFTER < plan.expanded < 1000  # needed the guide, and it did the job
+    assert SCHEDULE.guide_after < plan.expanded < 1000  # needed the guide, and it did the job
     _assert_valid(plan, sc)
-    # without the guide the same limit is not enough
-    monkeypatch.setattr(lattice_module, "GUIDE_AFTER", 10**9)
-    with pytest.raises(NoPathError) as e:
-        plan_lattice(sc, max_expansions=1000, time_limit=60.0)
-    assert e.value.reason == "expansions"
+    # the same search, composed as the planner composes it, finds it; without the guide the
+    # same limit is not enough
+    found, outcome, _ = plan_of(astar_of(sc), max_expansions=1000)
+    assert outcome == "found" and found.expanded == plan.expanded
+    unguided = dataclasses.replace(SCHEDULE, guide_after=10**9)
+    _, outcome, _ = plan_of(astar_of(sc, schedule=unguided), max_expansions=1000)
+    assert outcome == "expansions"

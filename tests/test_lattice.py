@@ -9,7 +9,8 @@ import pytest
 import segplan
 from segplan import NoPathError, Robot, make_scenario, measure_scenario_path, plan_poses, plan_scenario
 from segplan.planning.dubins import dubins_length, dubins_length_scalar
-from segplan.planning.lattice.primitives import NH, max_reach, primitive_set
+from segplan.planning.lattice.frame import NH, LatticeFrame
+from segplan.planning.lattice.primitives import max_reach, primitive_set
 from segplan.planning.lattice.search import plan_lattice
 
 SCENARIOS = Path(__file__).resolve().parent.parent / "scenarios"
@@ -81,9 +82,7 @@ def test_primitives_keep_the_steering_limit_and_cost_longd():
     for prims in ps.by_heading:
         assert any(p.h1 == p.h0 for p in prims) and any(p.h1 != p.h0 for p in prims)
         for p in prims:
-            u = p.union(
-                0.0, 0.0, float(segplan.planning.lattice.primitives.heading_angles()[p.h0]), 0.25, 1.0
-            )
+            u = LatticeFrame((0.0, 0.0, 0.0), 0.25, 1.0).union((0, 0, p.h0), p)
             assert u.max_curvature() <= kmax * (1 + 1e-9)
             assert math.isclose(p.cost, segplan.longd_exact(u.p0, u.p1, u.alpha, 1.0), rel_tol=1e-7)
             assert u.p1[0] == pytest.approx(0.25 * p.di) and u.p1[1] == pytest.approx(0.25 * p.dj)

@@ -1,13 +1,16 @@
 """The lattice planner: fast "no plan" for an enclosed goal, the approach screen, one option validator."""
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
+from test_lattice_parts import astar_of, plan_of
 
 from segplan import NoPathError, Robot, make_scenario, plan_scenario
 from segplan.planning.lattice import search as lt
 from segplan.planning.lattice.approach import steerable
+from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.plan import check_limits, check_option
 
 DEG = math.pi / 180.0
@@ -29,16 +32,16 @@ def test_enclosed_goal_stops_early():
     e = err.value
     assert e.reason == "expansions"
     assert "looks enclosed" in str(e) and "not a proof" in str(e)
-    assert e.expanded <= lt.ENCLOSURE_AFTER + lt.ENCLOSED_EXPANSIONS + 1
+    assert e.expanded <= SCHEDULE.enclosure_after + SCHEDULE.enclosed_expansions + 1
     assert e.best is not None and e.best.nodes[0] == sc.start
 
 
-def test_forward_search_alone_finds_no_plan_either(monkeypatch):
-    """Without the enclosure test, the forward search finds no plan there either."""
-    monkeypatch.setattr(lt._LatticeSearch, "enclosed", lambda self, expanded: False)
-    with pytest.raises(NoPathError) as err:
-        lt.lattice_search(_wall_goal(), max_expansions=1500, retry=False)
-    assert err.value.reason in ("expansions", "exhausted")
+def test_forward_search_alone_finds_no_plan_either():
+    """Without the approach tree (so without the enclosure test), the forward search finds no
+    plan there either."""
+    alone = dataclasses.replace(SCHEDULE, approach_after=10**9)
+    _, outcome, _ = plan_of(astar_of(_wall_goal(), schedule=alone), max_expansions=1500)
+    assert outcome in ("expansions", "exhausted")
 
 
 def test_default_planner_reports_the_enclosed_goal():
@@ -68,10 +71,11 @@ def test_steerable_screens_unions():
     p0 = (0.0, 0.0, 0.0)
     ahead = np.array([(3.0, 0.5, 0.2), (3.0, -0.5, -0.2)])
     behind = np.array([(-3.0, 0.0, 0.0), (0.0, 0.2, math.pi)])
-    assert steerable(p0, ahead, 1.0).all()
-    assert not steerable(p0, behind, 1.0).any()
+    slack = SCHEDULE.steer_slack
+    assert steerable(p0, ahead, 1.0, slack).all()
+    assert not steerable(p0, behind, 1.0, slack).any()
     tight = np.array([(0.3, 0.3, 1.5)])  # a quarter turn within 0.3 m: far beyond curvature 1
-    assert not steerable(p0, tight, 1.0).any()
+    assert not steerable(p0, tight, 1.0, slack).any()
 
 
 @pytest.mark.parametrize(
@@ -125,63 +129,52 @@ def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
     assert vector[1] > 0 and any(isinstance(x, tuple) and x[0] for x in vector[0])
 
 
-def _search_of(sc, monkeypatch, **kw):
-    """The lattice search object of a lattice_search call on ``sc`` (its first try)."""
-    seen = []
-    run = lt._LatticeSearch.run
-
-    def spy(self, *a):
-        seen.append(self)
-        return run(self, *a)
-
-    monkeypatch.setattr(lt._LatticeSearch, "run", spy)
-    try:
-        lt.lattice_search(sc, **kw)
-    except NoPathError:
-        pass
-    return seen[0]
+def _tree_of(sc, max_expansions):
+    """The goal's approach tree of the lattice search of ``sc`` (one resolution), after a run of
+    ``max_expansions`` expansions; built (at its first size) if that run did not."""
+    s = astar_of(sc)
+    plan_of(s, max_expansions=max_expansions)
+    if s.approach.keys is None:
+        s.approach.build(SCHEDULE.approach_limit)
+    return s.approach
 
 
 @pytest.mark.parametrize("goal", [(0.86, 1.52, 0.09), (8.86, 4.5, 0.0), (6.0, 3.26, -1.3)])
-def test_reach_all_holds_every_state_of_the_approach_tree(monkeypatch, goal):
+def test_reach_all_holds_every_state_of_the_approach_tree(goal):
     """The enclosure test's flood fill (grid screen only) finds a superset of the states the
     certified approach tree reaches, so "looks enclosed" by it implies so by the tree.
     Goals facing away from a wall or an obstacle a few decimetres behind them (pockets)."""
     robot = Robot(1.0, 0.3, 45 * DEG)
     box = [[4.0, 4.0], [8.0, 4.0], [8.0, 5.0], [4.0, 5.0]]
     sc = make_scenario(robot, (15.0, 8.0, math.pi), goal, [box], (0.0, 0.0, 20.0, 12.0))
-    s = _search_of(sc, monkeypatch, max_expansions=40, retry=False, escapes=False)
-    if s.approach_keys is None:
-        s.build_approaches(math.inf, 60)
-    s.grow_approaches(5000)
-    assert s.approach_exhausted
-    tree = {tuple(np.round(p, 9)) for p in s.approach_poses.tolist()}
-    everything = s.reach_all(5000)
+    t = _tree_of(sc, 40)
+    t.grow(5000)
+    assert t.exhausted
+    tree = {tuple(np.round(p, 9)) for p in t.poses.tolist()}
+    everything = t.reach_all(5000)
     assert everything is not None
     flood = {tuple(np.round(p, 9)) for p in everything.tolist()}
     assert tree <= flood
     n = len(flood)  # the limit: all of them up to it, None beyond
-    assert len(s.reach_all(n)) == n
-    assert n == 0 or s.reach_all(n - 1) is None
+    assert len(t.reach_all(n)) == n
+    assert n == 0 or t.reach_all(n - 1) is None
 
 
-def test_reach_all_counts_the_wall_pocket(monkeypatch):
+def test_reach_all_counts_the_wall_pocket():
     """The goal facing away from a wall a few decimetres behind it: a handful of states."""
-    s = _search_of(_wall_goal(), monkeypatch, max_expansions=40, retry=False, escapes=False)
-    if s.approach_keys is None:
-        s.build_approaches(math.inf, 60)
-    poses = s.reach_all(s.enclosure_limit)
+    t = _tree_of(_wall_goal(), 40)
+    poses = t.reach_all(t.enclosure_limit)
     assert poses is not None and len(poses) < 20
-    assert not s.start_joins(poses)
+    assert not t.start_joins(poses)
 
 
-def test_enclosure_limit_grows_with_the_turning_radius(monkeypatch):
+def test_enclosure_limit_grows_with_the_turning_radius():
     """Pockets scale with the turning radius: a robot turning wider than L counts more states."""
     wide = Robot(1.0, 0.3, 25 * DEG)  # R = L / tan(25 deg), about 2.1 L
     sc = make_scenario(wide, (15.0, 6.0, math.pi), (6.0, 6.0, 0.0), [], (0.0, 0.0, 20.0, 12.0))
-    s = _search_of(sc, monkeypatch, max_expansions=5, retry=False, escapes=False)
-    expected = lt.ENCLOSURE_LIMIT * (wide.min_turning_radius / wide.L) ** 2
-    assert s.enclosure_limit == pytest.approx(expected, abs=1.0)
+    t = astar_of(sc).approach
+    expected = SCHEDULE.enclosure_limit * (wide.min_turning_radius / wide.L) ** 2
+    assert t.enclosure_limit == pytest.approx(expected, abs=1.0)
 
 
 def test_default_planner_caps_the_papers_search(monkeypatch):

@@ -3,9 +3,9 @@
 Each check stands outside the search it judges:
 
 * **Dijkstra on the generated graph.** A recorder watches a lattice search (no library
-  change: the search's ``g`` dictionary is swapped for a recording twin through a class
-  property, and ``try_goal`` is wrapped) and keeps the states it expanded and the states
-  that tried the direct union to the goal. The oracle rebuilds that graph on its own:
+  change: a subclass of :class:`segplan.planning.lattice.astar.LatticeAStar` whose ``g`` is
+  a recording twin and whose ``try_goal`` logs its calls) and keeps the states it expanded
+  and the states that tried the direct union to the goal. The oracle rebuilds that graph on its own:
   every primitive out of every expanded state, kept if the certified test
   (:meth:`segplan.planning.validity.Workspace.union_free`, no grid screen, no deferred check)
   passes it; every tried direct union to the goal, kept if free. An independent Dijkstra
@@ -22,32 +22,39 @@ Each check stands outside the search it judges:
   deferred repair in a real search takes the cheapest edge from an expanded state that the
   certified test passes (every primitive of every heading tried, not the search's tables).
 
-The coarse guide (:data:`segplan.planning.lattice.guide.GUIDE_AFTER`) is an estimate, not a bound, and the
-goal's approach tree adds edges this recorder does not rebuild: the optimality oracles turn
-both off (a monkeypatch of the test, not of the library). The mutation tests at the end show
-that the oracles fail when the search is broken (h' times 1.5, duplicate detection broken,
-a Dubins word missing, the repair taking the first passing edge).
+The coarse guide (:class:`segplan.planning.lattice.guide.Guide`) is an estimate, not a bound,
+and the goal's approach tree adds edges this recorder does not rebuild: the optimality
+oracles turn both off (a schedule of the test, :class:`segplan.planning.lattice.schedule.Schedule`).
+The mutation tests at the end show that the oracles fail when the search is broken (h' times
+1.5, duplicate detection broken, a Dubins word missing, the repair taking the first passing
+edge).
 """
 
+import dataclasses
 import heapq
 import inspect
 import math
 import sys
 import textwrap
-from contextlib import contextmanager
 
 import numpy as np
 import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_lattice_parts import astar_of, plan_of
 
 from segplan import longd_exact
 from segplan.model.pose import Pose
 from segplan.planning import dubins
 from segplan.planning.dubins import dubins_length, dubins_length_scalar
+from segplan.planning.lattice import edges as edges_module
 from segplan.planning.lattice import search as lattice
-from segplan.planning.lattice.primitives import heading_angles, primitive_set
+from segplan.planning.lattice.astar import LatticeAStar
+from segplan.planning.lattice.edges import LazyEdges
+from segplan.planning.lattice.frame import LatticeFrame
+from segplan.planning.lattice.primitives import primitive_set
+from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.plan import union_longd
 from segplan.studies.floors import random_floor
 
@@ -84,36 +91,42 @@ class _RecordedG(dict):
         return default if self.forget else super().get(k, default)
 
 
-@contextmanager
-def recording(monkeypatch, guide=False, approaches=False, forget=False):
-    """Record every lattice search run inside: a list of the search objects, each with
-    ``glog`` (the log of :class:`_RecordedG`) and ``tried`` (``(key, world pose)`` of the
-    states that tried the direct union to the goal)."""
-    searches = []
+class Recorded(LatticeAStar):
+    """A lattice search that records: ``glog`` (the log of :class:`_RecordedG`, per run) and
+    ``tried`` (``(key, world pose)`` of the states that tried the direct union to the goal).
+    ``forget``: the duplicate-detection mutant."""
 
-    def get_g(self):
+    forget = False
+
+    @property
+    def g(self):
         return self.__dict__["g"]
 
-    def set_g(self, value):
+    @g.setter
+    def g(self, value):
         log = []
         g = _RecordedG(value, log)
-        g.forget = forget
+        g.forget = self.forget
         self.__dict__.update(g=g, glog=log, tried=[])
-        searches.append(self)
-
-    monkeypatch.setattr(lattice._LatticeSearch, "g", property(get_g, set_g), raising=False)
-    real_try_goal = lattice._LatticeSearch.try_goal
 
     def try_goal(self, key, P, g):
         self.tried.append((key, P))
-        return real_try_goal(self, key, P, g)
+        return super().try_goal(key, P, g)
 
-    monkeypatch.setattr(lattice._LatticeSearch, "try_goal", try_goal)
+
+def recorded(name, weight, every=1, guide=False, approaches=False, cls=Recorded, parts=None):
+    """The search ``plan_lattice`` runs on a random floor (one resolution, no tight arcs, every
+    expanded state trying the direct union to the goal by default), recorded, not run. Without
+    ``guide`` nor ``approaches``, the coarse guide is never built and no union goes to the
+    goal's approach tree (the tree still serves the enclosure test)."""
+    kind, index = name.rsplit("-", 1)
+    schedule = SCHEDULE
     if not guide:
-        monkeypatch.setattr(lattice, "GUIDE_AFTER", 10**9)
+        schedule = dataclasses.replace(schedule, guide_after=10**9)
     if not approaches:
-        monkeypatch.setattr(lattice._LatticeSearch, "try_approaches", lambda self, *a: None)
-    yield searches
+        schedule = dataclasses.replace(schedule, approach_tries=0)
+    sc = random_floor(kind, int(index))
+    return astar_of(sc, cls=cls, weight=weight, analytic_every=every, schedule=schedule, **(parts or {}))
 
 
 def expanded_states(search) -> list:
@@ -204,15 +217,12 @@ def dearer_reparents(search) -> list:
     return bad
 
 
-def run(monkeypatch, name, weight, every=1, **kw):
-    """``plan_lattice`` on a random floor (one resolution, no tight arcs, every expanded state
-    trying the direct union to the goal by default), recorded."""
-    kind, index = name.rsplit("-", 1)
-    sc = random_floor(kind, int(index))
-    with recording(monkeypatch, **kw) as searches:
-        plan = lattice.plan_lattice(sc, weight=weight, escapes=False, retry=False, analytic_every=every)
-    assert searches, "the direct union was free: no search to judge"
-    return plan, searches[-1]
+def run(name, weight, every=1, **kw):
+    """:func:`recorded`, run as the planner runs it: ``(plan, search)``."""
+    search = recorded(name, weight, every, **kw)
+    plan, outcome, _ = plan_of(search)
+    assert outcome == "found", outcome
+    return plan, search
 
 
 # floors solved in 0.1-0.4 s at weight 1 (guide and approach tree off)
@@ -221,8 +231,8 @@ W2 = ["any-001", "any-004", "any-011"]
 
 
 @pytest.mark.parametrize("name", W1)
-def test_weight_one_is_optimal_on_the_graph_it_generated(monkeypatch, name):
-    plan, s = run(monkeypatch, name, 1.0)
+def test_weight_one_is_optimal_on_the_graph_it_generated(name):
+    plan, s = run(name, 1.0)
     expanded = expanded_states(s)
     assert plan.expanded == len(expanded) == len(set(expanded))  # no state expanded twice
     assert not dearer_reparents(s)
@@ -232,8 +242,8 @@ def test_weight_one_is_optimal_on_the_graph_it_generated(monkeypatch, name):
 
 
 @pytest.mark.parametrize("name", W2)
-def test_weight_two_is_within_its_bound_on_the_graph_it_generated(monkeypatch, name):
-    plan, s = run(monkeypatch, name, 2.0)
+def test_weight_two_is_within_its_bound_on_the_graph_it_generated(name):
+    plan, s = run(name, 2.0)
     expanded = expanded_states(s)
     assert plan.expanded == len(expanded) == len(set(expanded))
     assert not dearer_reparents(s)
@@ -242,10 +252,10 @@ def test_weight_two_is_within_its_bound_on_the_graph_it_generated(monkeypatch, n
     assert not h_violations(s, weight=2.0)  # h' / weight is the admissible bound
 
 
-def test_the_guided_search_expands_each_state_once_and_only_lowers_g(monkeypatch):
+def test_the_guided_search_expands_each_state_once_and_only_lowers_g():
     # the coarse guide re-ranks the open list (and lowers the weight): bookkeeping still holds
-    plan, s = run(monkeypatch, "any-005", 2.0, guide=True, approaches=True)
-    assert s.ctg is not None, "the guide was not built: the test tests nothing"
+    plan, s = run("any-005", 2.0, guide=True, approaches=True)
+    assert s.guide.field is not None, "the guide was not built: the test tests nothing"
     expanded = expanded_states(s)
     assert plan.expanded == len(expanded) == len(set(expanded))
     assert not dearer_reparents(s)
@@ -253,11 +263,11 @@ def test_the_guided_search_expands_each_state_once_and_only_lowers_g(monkeypatch
 
 def test_primitive_costs_are_exact_longd():
     L, steer = 1.0, 45 * DEG
-    angles = heading_angles()
     for r in (0.125, 0.0625):
         for prims in primitive_set(L, steer, r).by_heading:
             for p in prims:
-                u = p.union(0.3, -0.2, float(angles[p.h0]), r, L)
+                # the lattice laid out at (0.3, -0.2) heading 0, so its state (0, 0, h0) heads angles[h0]
+                u = LatticeFrame((0.3, -0.2, 0.0), r, L).union((0, 0, p.h0), p)
                 assert p.cost == pytest.approx(longd_exact(u.p0, u.p1, u.alpha, L), rel=1e-7)
 
 
@@ -271,25 +281,35 @@ def merged(*searches) -> dict:
     return out
 
 
+class _InflatedH(Recorded):
+    """The mutant: h' times 1.5."""
+
+    def h(self, *a):
+        return 1.5 * super().h(*a)
+
+
 @pytest.mark.parametrize("name", ["natural-003", "natural-005"])
-def test_an_inadmissible_h_is_caught(monkeypatch, name):
+def test_an_inadmissible_h_is_caught(name):
     # h' times 1.5 (the Dubins bound inflated): h' exceeds the cost-to-go, and on the union of
     # the graphs generated with and without the mutation, weight 1 is optimal only unmutated
-    plan, s = run(monkeypatch, name, 1.0)
-    real_h = lattice._LatticeSearch.h
-    with monkeypatch.context() as m:
-        m.setattr(lattice._LatticeSearch, "h", lambda self, *a: 1.5 * real_h(self, *a))
-        mutant, ms = run(m, name, 1.0)
-        assert h_violations(ms)
+    plan, s = run(name, 1.0)
+    mutant, ms = run(name, 1.0, cls=_InflatedH)
+    assert h_violations(ms)
     best = dijkstra(merged(s, ms), (0, 0, 0))[GOAL]
     assert plan.search_cost == pytest.approx(best, rel=1e-12, abs=0.0)
     assert mutant.search_cost > best * (1 + 1e-9)
 
 
-def test_broken_duplicate_detection_is_caught(monkeypatch):
+class _Forgetful(Recorded):
+    """The mutant: the search's ``g.get`` sees no earlier path."""
+
+    forget = True
+
+
+def test_broken_duplicate_detection_is_caught():
     # the search sees no earlier path to a state: dearer paths re-parent states, and the plan
     # is dearer than its graph's optimum
-    plan, s = run(monkeypatch, "natural-003", 1.0, forget=True)
+    plan, s = run("natural-003", 1.0, cls=_Forgetful)
     assert dearer_reparents(s)
     assert plan.search_cost > optimum(s) * (1 + 1e-9)
 
@@ -505,20 +525,19 @@ def _cheapest_passing_edge(s, key, closed, failed):
     return best
 
 
-def _judged_repairs(monkeypatch, repair):
-    """Run ``repair`` (the search's, or a mutant) in the searches below, each call judged by
-    :func:`_cheapest_passing_edge`: returns ``[(expected, got)]``."""
-    judged = []
+class _Judged(Recorded):
+    """Every repair judged by :func:`_cheapest_passing_edge`: ``judged`` holds ``(expected, got)``."""
 
-    def judge(self, key, closed, failed, h, counter):
-        expected = _cheapest_passing_edge(self, key, closed, set(failed))
-        out = repair(self, key, closed, failed, h, counter)
+    def __init__(self, *a, **kw):
+        super().__init__(*a, **kw)
+        self.judged = []
+
+    def repair(self, key, closed, h, counter):
+        expected = _cheapest_passing_edge(self, key, closed, set(self.edges.failed))
+        out = super().repair(key, closed, h, counter)
         got = (dict.__getitem__(self.g, key), self.parent[key]) if key in self.g else None
-        judged.append((expected, got))
+        self.judged.append((expected, got))
         return out
-
-    monkeypatch.setattr(lattice._LatticeSearch, "repair", judge)
-    return judged
 
 
 def _same(expected, got) -> bool:
@@ -530,21 +549,28 @@ def _same(expected, got) -> bool:
 
 
 @pytest.mark.parametrize("name", ["natural-003", "natural-005"])
-def test_every_repair_takes_the_cheapest_passing_edge(monkeypatch, name):
-    judged = _judged_repairs(monkeypatch, lattice._LatticeSearch.repair)
-    run(monkeypatch, name, 1.0)
-    assert len(judged) >= 10, "few repairs: the test tests little"
-    assert all(_same(e, g) for e, g in judged)
+def test_every_repair_takes_the_cheapest_passing_edge(name):
+    _, s = run(name, 1.0, cls=_Judged)
+    assert len(s.judged) >= 10, "few repairs: the test tests little"
+    assert all(_same(e, g) for e, g in s.judged)
 
 
-def test_a_repair_taking_the_first_passing_edge_is_caught(monkeypatch):
-    # the mutant: the search's repair without its sort (the first passing edge, not the cheapest)
-    from segplan.planning.lattice import edges as deferred
+def _first_passing():
+    """The mutant: :class:`LazyEdges` whose repair lacks its sort (its source, one call removed):
+    the first passing edge, not the cheapest."""
+    src = textwrap.dedent(inspect.getsource(LazyEdges.repair))
+    sort = "sorted(o for o in options if o[2] not in self.failed)"
+    assert sort in src
+    ns = dict(vars(edges_module))
+    exec(src.replace(sort, "[o for o in options if o[2] not in self.failed]"), ns)
+    return type("FirstPassing", (LazyEdges,), {"repair": ns["repair"]})
 
-    src = textwrap.dedent(inspect.getsource(deferred.DeferredChecks.repair))
-    assert "    options.sort()\n" in src
-    ns = dict(vars(deferred))
-    exec(src.replace("    options.sort()\n", ""), ns)
-    judged = _judged_repairs(monkeypatch, ns["repair"])
-    run(monkeypatch, "any-009", 1.0)  # 4 of its 86 repairs then take a dearer edge
-    assert not all(_same(e, g) for e, g in judged)
+
+class _JudgedFirstPassing(_Judged):
+    def __init__(self, *a, **kw):
+        super().__init__(*a, edges=_first_passing()(self.screen_edge, self.check_edge), **kw)
+
+
+def test_a_repair_taking_the_first_passing_edge_is_caught():
+    _, s = run("any-009", 1.0, cls=_JudgedFirstPassing)  # 4 of its 86 repairs then take a dearer edge
+    assert not all(_same(e, g) for e, g in s.judged)

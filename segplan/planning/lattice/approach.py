@@ -1,8 +1,8 @@
 """The goal's approach tree of the lattice planner (beyond the paper).
 
-The lattice of :mod:`segplan.planning.lattice.search` is laid out in the start's frame, so the goal is
-in general off the lattice, and a goal in a pocket may admit no direct union from any
-lattice state. :class:`GoalApproaches` grows a small tree backwards from the goal: a
+The lattice of the search (:mod:`segplan.planning.lattice.astar`) is laid out in the start's
+frame, so the goal is in general off the lattice, and a goal in a pocket may admit no direct
+union from any lattice state. :class:`GoalApproach` grows a small tree backwards from the goal: a
 lattice in the goal's own frame, whose states reach the goal exactly by chains of
 primitives (every edge screened on the clearance grid and, where unsure, checked by the
 certified test when its state is settled: as the search's, :mod:`segplan.planning.lattice.edges`).
@@ -10,15 +10,16 @@ Expanded states near the goal then try unions to the most promising of these *ap
 states* (``g`` + Dubins length + the approach's cost), and a success
 puts the goal in the open list with the whole chain.
 
-**A goal that looks enclosed** (:meth:`GoalApproaches.enclosed`): when the tree runs out
-of states, or after :data:`ENCLOSURE_AFTER` expansions without a plan a flood fill over
-the grid's screen alone finds at most :data:`ENCLOSURE_LIMIT` states that reach the goal
+**A goal that looks enclosed** (:meth:`GoalApproach.enclosed`): when the tree runs out
+of states, or after ``enclosure_after`` expansions without a plan a flood fill over the
+grid's screen alone finds at most ``enclosure_limit`` states that reach the goal
 by primitives (4 times as many at half the cell, and more for a robot that turns wider
 than ``L``), and no free union joins the start to one of them, the goal can be reached
 neither by that lattice's primitives nor by a union from the start. A union from a state
 of the start's lattice might still reach it, so this is no proof: the search goes on for
-:data:`ENCLOSED_EXPANSIONS` expansions, then stops with ``reason="expansions"`` and says
-why. A goal a few decimetres in front of a wall, facing away from it, looks so (and is).
+``enclosed_expansions`` expansions, then stops with ``reason="expansions"`` and says
+why (the counts: :class:`segplan.planning.lattice.schedule.Schedule`). A goal a few
+decimetres in front of a wall, facing away from it, looks so (and is).
 """
 
 from __future__ import annotations
@@ -31,49 +32,19 @@ import numpy as np
 from ...model.pose import Pose
 from ...model.union import Union, cubic_coefficients
 from ..dubins import dubins_length
-from .clearance import union_points
-from .primitives import heading_angles
+from .clearance import union_free_near, union_free_screened
+from .edges import LazyEdges
+from .frame import LatticeFrame
+from .schedule import Schedule
 
-__all__ = [
-    "APPROACH_CANDIDATES",
-    "APPROACH_GROWTH",
-    "ENCLOSED_EXPANSIONS",
-    "ENCLOSURE_AFTER",
-    "ENCLOSURE_LIMIT",
-    "GoalApproaches",
-    "steerable",
-]
-
-_ANGLES = heading_angles()
-GOAL = ("goal",)
-
-#: Approach states, the most promising first, that :meth:`GoalApproaches.try_approaches`
-#: screens by :func:`steerable` before it builds a union to the first ``tries`` that pass.
-APPROACH_CANDIDATES = 8
-#: Expansions without a plan after which the goal's enclosure test runs (see
-#: :meth:`GoalApproaches.enclosed`), and the approach states it grows to (at ``L / 8``; times
-#: 4 per halving of the resolution).
-ENCLOSURE_AFTER = 256
-ENCLOSURE_LIMIT = 300
-#: States the approach tree grows to after :data:`ENCLOSURE_AFTER` expansions without a plan
-#: (at ``L / 8``; scaled as ``ENCLOSURE_LIMIT``): more targets for the search's unions. Its
-#: edges pass the certified test, so it grows at a cost; the enclosure test counts states
-#: by the grid's screen alone (:meth:`GoalApproaches.reach_all`). On the 400 random floors
-#: of chapter 9 growing it to ``ENCLOSURE_LIMIT`` found no plan that 120 did not.
-APPROACH_GROWTH = 120
-#: Expansions the search goes on once the goal looks enclosed (a direct union from a state of
-#: the start's lattice may still reach it: not a proof), before it stops. On the 400 random
-#: floors of chapter 9, my 100 "walls close ahead" floors and 80 floors of varied robots, the
-#: plans found after the goal looked enclosed came 34 and 125 expansions later (any-086,
-#: natural-066); 512 before made every such failure about 0.45 s long, 192 about 0.3 s.
-ENCLOSED_EXPANSIONS = 192
+__all__ = ["GoalApproach", "steerable"]
 
 #: Frames sampled per pose pair by :func:`steerable`, abscissae (fractions of the span).
 _FRAMES = (np.arange(1, 8) / 8.0)[None, :, None]
 _TAU = np.linspace(0.0, 1.0, 17)[None, None, :]
 
 
-def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float = 1.1) -> np.ndarray:
+def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float) -> np.ndarray:
     """Which poses ``p1`` (``(n, 3)``) a union from ``p0`` may reach within the steering limit.
 
     A cheap screen before a union is built (vectorised over the poses): a cubic union
@@ -82,7 +53,8 @@ def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float = 1.1) -> n
     path sampled at 17 abscissae is below ``slack * max_curvature`` (a coarser sampling
     than :class:`segplan.planning.links.LinkModel`'s steering fallback; ``slack`` keeps most
     unions the samples misjudge). A heuristic, not a proof: it only orders the tries of
-    :meth:`GoalApproaches.try_approaches`, never decides that no plan exists.
+    :meth:`GoalApproach.connect`, never decides that no plan exists
+    (:attr:`segplan.planning.lattice.schedule.Schedule.steer_slack`).
     """
     p1 = np.asarray(p1, dtype=float).reshape(-1, 3)
     dx, dy = p1[:, 0] - p0[0], p1[:, 1] - p0[1]
@@ -106,138 +78,183 @@ def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float = 1.1) -> n
     return ok
 
 
-class GoalApproaches:
-    """Mixin of the lattice search (:mod:`segplan.planning.lattice.search`): the goal's approach tree.
+class GoalApproach:
+    """The goal's approach tree and its enclosure test (module docstring): a part of the lattice search.
 
-    Uses the search's ``prims``, ``fine``, ``r``, ``L``, ``R``, ``start``, ``goal``, ``grid``,
-    ``ex``, ``ws``, ``heap``, ``goal_g``, ``goal_parent`` and :meth:`certified`.
+    Parameters
+    ----------
+    robot : segplan.Robot
+    start, goal : segplan.Pose
+        The search's start (the origin of its lattice and of the clearance grid's frame) and goal.
+    resolution : float
+        The cell of the search's lattice; the goal's lattice has the same cell and primitives.
+    prims : tuple of tuple of Primitive
+        The primitives by start heading (:attr:`segplan.planning.lattice.primitives.PrimitiveSet.by_heading`).
+    fine : tuple
+        Their finer points (:meth:`segplan.planning.lattice.primitives.PrimitiveSet.fine_points`).
+    grid : segplan.planning.lattice.clearance.ClearanceGrid
+        The search's clearance grid (the start's lattice frame).
+    ws : segplan.planning.validity.Workspace
+        The certified tests.
+    links : segplan.planning.links.LinkModel
+        Makes the unions from the search's states (optimal reference system, steering fallback).
+    schedule : segplan.planning.lattice.schedule.Schedule
+        When the tree is built and grown, how much it does.
+    budget : float
+        The tree keeps the states within this LONGD of the goal (default: all).
+
+    Attributes
+    ----------
+    keys : list or None
+        The approach states (the goal's lattice), nearest the goal first; None until built.
+    costs, poses, in_lattice : ndarray
+        Their LONGD to the goal, world poses, and poses in the start's lattice frame.
+    exhausted : bool
+        The tree ran out of states: it holds every state from which a chain of free primitives
+        reaches the goal.
+    enclosure_limit : int
+        States up to which the enclosure test counts (:attr:`Schedule.enclosure_limit` scaled
+        to the resolution and to a robot turning wider than ``L``).
+    enclosure_states : int
+        The states the enclosure test counted when the goal looked enclosed (0 before).
     """
 
-    def goal_pose(self, key):
-        """World pose of a state of the lattice laid out in the goal's frame."""
-        i, j, h = key
-        x, y = i * self.r, j * self.r
-        c, s = math.cos(self.goal.theta), math.sin(self.goal.theta)
-        return (
-            self.goal.x + c * x - s * y,
-            self.goal.y + s * x + c * y,
-            self.goal.theta + float(_ANGLES[h]),
+    def __init__(
+        self,
+        robot,
+        start,
+        goal,
+        resolution,
+        prims,
+        fine,
+        grid,
+        ws,
+        links,
+        schedule: Schedule,
+        budget: float = math.inf,
+    ):
+        self.start, self.goal = start, goal
+        self.R = robot.min_turning_radius
+        self.frame = LatticeFrame(goal, resolution, robot.L)
+        self.prims, self.fine, self.grid, self.ws, self.links = prims, fine, grid, ws, links
+        self.schedule, self.budget = schedule, float(budget)
+        # the goal's enclosure test: states that reach the goal counted up to this many (more
+        # on a finer lattice, and for a robot whose turns, so pockets, are wider than L)
+        wider = max(1.0, self.R / robot.L) ** 2
+        self.enclosure_limit = int(
+            round(schedule.enclosure_limit * (0.125 * robot.L / resolution) ** 2 * wider)
         )
+        self.reset()
 
-    def build_approaches(self, budget: float, limit: int):
+    def reset(self) -> None:
+        """No tree yet (a new search)."""
+        self.keys = None
+        self.enclosure_states = 0
+
+    def build(self, limit: int) -> None:
         """States from which a chain of free primitives ends exactly at the goal (backward Dijkstra).
 
         The goal is the state ``(0, 0, 0)`` of a lattice laid out in its own frame; the
         predecessors of a state are reached by the primitives backwards. The edges into a
         state are screened at once by the primitives' points on the clearance grid; the
-        unsure ones go to :meth:`certified` if and when their state is settled (a failing
-        one is replaced by the cheapest passing edge to a settled state,
-        :meth:`_approach_repair`). Keeps the states within ``budget`` (LONGD to
-        the goal), at most ``limit`` of them. A later call with a larger ``limit`` resumes
-        the same search (:meth:`grow_approaches`).
+        unsure ones are checked if and when their state is settled (:class:`LazyEdges`: a
+        failing one is replaced by the cheapest passing edge to a settled state). Keeps the
+        states within ``budget`` (LONGD to the goal), at most ``limit`` of them. A later
+        call of :meth:`grow` with a larger ``limit`` resumes the same search.
         """
-        self.approach_budget_used = float(budget)
-        into = [[] for _ in range(len(self.prims))]  # heading -> [(h0, m)] of primitives ending at it
-        for h0, prims in enumerate(self.prims):
-            for m, p in enumerate(prims):
+        prims = self.prims
+        self.into = into = [[] for _ in range(len(prims))]  # heading -> [(h0, m)] of primitives ending at it
+        for h0, ps in enumerate(prims):
+            for m, p in enumerate(ps):
                 into[p.h1].append((h0, m))
         # goal frame -> start (lattice) frame: a rotation by the heading difference and a shift
         dth = self.goal.theta - self.start.theta
-        rot = np.array([[math.cos(dth), -math.sin(dth)], [math.sin(dth), math.cos(dth)]])
-        self._back = dict(
-            into=into,
-            rot=rot,
-            origin=self.grid.to_lattice(np.array(self.goal[:2])),
-            pts_in=[np.stack([self.prims[h0][m].points for h0, m in e]) @ rot.T if e else None for e in into],
-            dl_in=[np.array([self.prims[h0][m].delta for h0, m in e]) + 1e-9 if e else None for e in into],
-            steps_in=[
-                np.array([(self.prims[h0][m].di, self.prims[h0][m].dj, h0) for h0, m in e]).reshape(-1, 3)
-                for e in into
-            ],
-            cost={(0, 0, 0): 0.0},
-            done=set(),
-            heap=[(0.0, (0, 0, 0))],
-            out=[],
-            unchecked=set(),  # deferred edge checks, as the search's (segplan.planning.lattice.edges)
-            failed=set(),
-        )
-        self.approach_next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
-        self.grow_approaches(limit)
+        self.rot = rot = np.array([[math.cos(dth), -math.sin(dth)], [math.sin(dth), math.cos(dth)]])
+        self.origin = self.grid.to_lattice(np.array(self.goal[:2]))
+        self.pts_in = [np.stack([prims[h0][m].points for h0, m in e]) @ rot.T if e else None for e in into]
+        self.dl_in = [np.array([prims[h0][m].delta for h0, m in e]) + 1e-9 if e else None for e in into]
+        self.steps_in = [
+            np.array([(prims[h0][m].di, prims[h0][m].dj, h0) for h0, m in e]).reshape(-1, 3) for e in into
+        ]
+        self.to_goal = {(0, 0, 0): 0.0}  # key -> LONGD of its chain to the goal
+        self.settled: set = set()
+        self.open = [(0.0, (0, 0, 0))]
+        self.out: list = []
+        self.edges = LazyEdges(self.screen_edge, self.check_edge)
+        self.next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
+        self.grow(limit)
 
     def _into(self, i: int, j: int, h: int):
         """The primitives into the state ``(i, j, h)`` of the goal's lattice (those of
-        ``self._back["into"][h]``): their start points in the lattice frame and the grid's
-        screen of their points (certainly free, certainly failing)."""
-        b = self._back
-        base = self._goal_lattice_point((i, j) - b["steps_in"][h][:, :2])
-        free, bad = self.grid.screen(b["pts_in"][h] + base[:, None, :], b["dl_in"][h])
+        ``into[h]``): their start points in the lattice frame and the grid's screen of their
+        points (certainly free, certainly failing)."""
+        base = self._point((i, j) - self.steps_in[h][:, :2])
+        free, bad = self.grid.screen(self.pts_in[h] + base[:, None, :], self.dl_in[h])
         return base, free, bad
 
-    def _goal_lattice_point(self, ij) -> np.ndarray:
-        """Lattice-frame position of the goal's-lattice point(s) ``ij`` (``(..., 2)`` integers)."""
-        b = self._back
-        return b["origin"] + np.asarray(ij, dtype=float) * self.r @ b["rot"].T
+    def _point(self, ij) -> np.ndarray:
+        """Start-lattice-frame position of the goal's-lattice point(s) ``ij`` (``(..., 2)`` integers)."""
+        return self.origin + np.asarray(ij, dtype=float) * self.frame.r @ self.rot.T
 
-    def _approach_edge_free(self, prev, key, h0: int, m: int) -> bool:
-        """The finer screen and, if still unsure, the certified test of primitive ``(h0, m)``
-        from goal-frame state ``prev`` to ``key`` (primitives' finer points, as the search's)."""
-        fp, fd = self.fine[h0]
-        base = self._goal_lattice_point(prev[:2])
-        world = (fp[m] @ self._back["rot"].T + base) @ self.grid.rot.T + (self.start.x, self.start.y)
-        return self.certified(lambda: self.approach_union(prev, key, h0, m), world, fd[m] + 1e-9)
+    def screen_edge(self, edge) -> tuple[bool, bool]:
+        """The grid's screen of primitive ``m`` from goal-frame state ``key`` (``edge = (key, m)``):
+        certainly free, certainly failing."""
+        key, m = edge
+        p = self.prims[key[2]][m]
+        free, bad = self.grid.screen((p.points @ self.rot.T + self._point(key[:2]))[None], p.delta + 1e-9)
+        return free[0], bad[0]
 
-    def _approach_check(self, key) -> bool:
+    def check_edge(self, edge) -> bool:
+        """The finer screen and, if still unsure, the certified test of primitive ``m`` from
+        goal-frame state ``key`` (``edge = (key, m)``; the primitives' finer points, as the search's)."""
+        key, m = edge
+        fp, fd = self.fine[key[2]]
+        base = self._point(key[:2])
+        world = (fp[m] @ self.rot.T + base) @ self.grid.rot.T + (self.start.x, self.start.y)
+        return union_free_near(
+            self.ws, lambda: self.frame.union(key, self.prims[key[2]][m]), world, fd[m] + 1e-9
+        )[0]
+
+    def _check(self, key) -> bool:
         """Check the edge of state ``key`` towards the goal, deferred until now; if it fails,
-        repair the state (:meth:`_approach_repair`) and return False."""
-        b = self._back
-        b["unchecked"].discard(key)
-        nk, h0, m = self.approach_next[key]
-        if self._approach_edge_free(key, nk, h0, m):
+        repair the state (:meth:`_repair`) and return False."""
+        _, _, m = self.next[key]
+        if self.edges.check(key, (key, m)):
             return True
-        b["failed"].add((key, h0, m))
-        self._approach_repair(key)
+        self._repair(key)
         return False
 
-    def _approach_repair(self, key) -> None:
-        """State ``key`` of the approach tree lost its edge: give it the cheapest edge to a
-        settled state that passes (grid screen, then :meth:`_approach_edge_free`), or forget it."""
-        b = self._back
+    def _repair(self, key) -> None:
+        """State ``key`` of the tree lost its edge: give it the cheapest passing edge to a
+        settled state (:meth:`LazyEdges.repair`), or forget it."""
         i, j, h0 = key
-        cost, nxt, options = b["cost"], self.approach_next, []
+        options = []
         for m, p in enumerate(self.prims[h0]):
             succ = (i + p.di, j + p.dj, p.h1)
-            if succ in b["done"] and (key, h0, m) not in b["failed"]:
-                options.append((cost[succ] + p.cost, succ, m))
-        del cost[key], nxt[key]
-        base = self._goal_lattice_point(key[:2])
-        for nc, succ, m in sorted(options):
-            p = self.prims[h0][m]
-            free, bad = self.grid.screen((p.points @ b["rot"].T + base)[None], p.delta + 1e-9)
-            if nc <= self.approach_budget_used and not bad[0]:
-                if free[0] or self._approach_edge_free(key, succ, h0, m):
-                    cost[key], nxt[key] = nc, (succ, h0, m)
-                    heapq.heappush(b["heap"], (nc, key))
-                    return
-            b["failed"].add((key, h0, m))
+            if succ in self.settled:
+                options.append((self.to_goal[succ] + p.cost, succ, (key, m)))
+        del self.to_goal[key], self.next[key]
+        found = self.edges.repair(options, self.budget)
+        if found is not None:
+            nc, succ, (_, m) = found
+            self.to_goal[key], self.next[key] = nc, (succ, h0, m)
+            heapq.heappush(self.open, (nc, key))
 
-    def grow_approaches(self, limit: int):
-        """Resume :meth:`build_approaches` until ``limit`` states (or none is left).
+    def grow(self, limit: int) -> None:
+        """Resume :meth:`build` until ``limit`` states (or none is left).
 
-        Sets ``approach_exhausted``: the backward search ran out of states, so the states
-        found are *all* the states of the goal's lattice from which a chain of free
-        primitives reaches the goal (with ``budget`` infinite; see :meth:`start_joins`).
+        Sets :attr:`exhausted`: the backward search ran out of states, so the states found
+        are *all* the states of the goal's lattice from which a chain of free primitives
+        reaches the goal (with ``budget`` infinite; see :meth:`start_joins`).
         """
-        b = self._back
-        into, grid = b["into"], self.grid
-        cost, done, heap, out, nxt = b["cost"], b["done"], b["heap"], b["out"], self.approach_next
-        budget, goal_key, unchecked = self.approach_budget_used, (0, 0, 0), b["unchecked"]
+        into, grid = self.into, self.grid
+        cost, done, heap, out, nxt = self.to_goal, self.settled, self.open, self.out, self.next
+        budget, goal_key, edges = self.budget, (0, 0, 0), self.edges
         while heap and len(out) < limit:
             c, key = heapq.heappop(heap)
             if key in done or c != cost.get(key):
                 continue  # settled, or an entry left behind by a repair
-            if key in unchecked and not self._approach_check(
-                key
-            ):  # checked now (segplan.planning.lattice.edges)
+            if edges.pending(key) and not self._check(key):  # checked now
                 continue
             done.add(key)
             if key != goal_key:
@@ -253,23 +270,23 @@ class GoalApproaches:
                 if bad[k] or prev in done or nc > budget or not nc < cost.get(prev, math.inf):
                     continue
                 # an edge the grid cannot clear is checked if and when prev is settled
-                (unchecked.discard if free[k] else unchecked.add)(prev)
+                edges.defer(prev, free[k])
                 cost[prev], nxt[prev] = nc, (key, h0, m)
                 heapq.heappush(heap, (nc, prev))
         while heap:  # exhausted if no state is left that a checked edge joins to the tree
             c, key = heap[0]
             if key in done or c != cost.get(key):
                 heapq.heappop(heap)
-            elif key in unchecked and not self._approach_check(key):
+            elif edges.pending(key) and not self._check(key):
                 continue  # repaired: its entry, if any, is a new one
             else:
                 break
-        self.approach_exhausted = not heap
-        self.approach_keys = list(out)
-        self.approach_cost = np.array([cost[k] for k in out])
-        poses = np.array([self.goal_pose(k) for k in out]).reshape(-1, 3)
-        self.approach_poses = poses
-        self.approach_lattice = (
+        self.exhausted = not heap
+        self.keys = list(out)
+        self.costs = np.array([cost[k] for k in out])
+        poses = np.array([self.frame.pose(k) for k in out]).reshape(-1, 3)
+        self.poses = poses
+        self.in_lattice = (
             np.column_stack((grid.to_lattice(poses[:, :2]), poses[:, 2] - self.start.theta))
             if len(out)
             else np.zeros((0, 3))
@@ -278,69 +295,67 @@ class GoalApproaches:
     def start_joins(self, poses: np.ndarray) -> bool:
         """Does a free union within the steering limit join the start to one of ``poses``?
 
-        ``poses``: every state of the goal's lattice that reaches the goal (the approach
-        tree exhausted, or :meth:`reach_all`): if the start joins none of them (nor the
-        goal, which the planner tries first), no plan made of a union from the start and a
-        chain of primitives in the goal's frame exists, the backward counterpart of an
-        exhausted search on the start's lattice.
+        ``poses``: every state of the goal's lattice that reaches the goal (the tree
+        exhausted, or :meth:`reach_all`): if the start joins none of them (nor the goal,
+        which the planner tries first), no plan made of a union from the start and a chain
+        of primitives in the goal's frame exists, the backward counterpart of an exhausted
+        search on the start's lattice.
         """
         if not len(poses):
             return False
         P = tuple(self.start)
         for Q in poses.tolist():  # every one (no screen: this decides a NoPathError)
-            u = self.ex.union(Pose(*P), Pose(*Q))
+            u = self.links.union(Pose(*P), Pose(*Q))
             if u is None or not self.ws.curvature_ok(u):
                 continue
-            pts, dl = union_points(u)
-            free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
-            if not bad[0] and (free[0] or self.certified(u, pts, dl)):
+            if union_free_screened(self.grid, self.ws, u):
                 return True
         return False
 
-    def approach_union(self, prev, key, h0, m) -> Union:
-        """The union of primitive ``(h0, m)`` from goal-frame state ``prev`` to ``key``."""
-
-        p = self.prims[h0][m]
-        P0, P1 = Pose(*self.goal_pose(prev)), Pose(*self.goal_pose(key))
-        psi = math.atan2(P1.y - P0.y, P1.x - P0.x)
-        return Union.from_intrinsic(P0, P1, p.alpha, self.L, p.d, psi, p.phi0, p.phi1)
-
-    def approach_chain(self, key) -> list:
+    def chain(self, key) -> list[Union]:
         """Unions from an approach state to the goal."""
         out = []
-        while self.approach_next[key] is not None:
-            nk, h0, m = self.approach_next[key]
-            out.append(self.approach_union(key, nk, h0, m))
+        while self.next[key] is not None:
+            nk, h0, m = self.next[key]
+            out.append(self.frame.union(key, self.prims[h0][m]))
             key = nk
         return out
 
-    def try_approaches(self, key, P, g, x, y, th, tries: int):
-        """Unions from state ``key`` to the ``tries`` most promising approach states."""
+    def connect(self, P, g: float, x: float, y: float, th: float, goal_g: float):
+        """The cheapest union from a state of the search (world pose ``P``, cost ``g``; ``x, y,
+        th`` in the start's lattice frame) to one of the most promising approach states, if it
+        beats ``goal_g``: ``(cost to the goal, unions to the goal)``, or None.
 
-        if not len(self.approach_keys) or ("final", key) in self.banned:
-            return
-        a = self.approach_lattice
-        est = g + self.approach_cost + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
-        order = np.argsort(est, kind="stable")[:APPROACH_CANDIDATES]
-        order = order[est[order] < self.goal_g]
+        The approach states are ranked by ``g`` + their Dubins length + their cost to the goal;
+        the first :attr:`Schedule.approach_candidates` are screened by :func:`steerable`, and
+        unions are built to the first :attr:`Schedule.approach_tries` that pass.
+        """
+        if not len(self.keys):
+            return None
+        s = self.schedule
+        a = self.in_lattice
+        est = g + self.costs + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
+        order = np.argsort(est, kind="stable")[: s.approach_candidates]
+        order = order[est[order] < goal_g]
         # the most promising states by Dubins length are often those no single union reaches
         # (a turn tighter than a cubic can make): screen them first
-        order = order[steerable(P, self.approach_poses[order], self.ws.max_curvature)][:tries]
+        order = order[steerable(P, self.poses[order], self.ws.max_curvature, s.steer_slack)][
+            : s.approach_tries
+        ]
+        found = None
         for k in order:
-            Q = Pose(*self.approach_poses[k].tolist())
-            u = self.ex.union(Pose(*P), Q)
+            Q = Pose(*self.poses[k].tolist())
+            u = self.links.union(Pose(*P), Q)
             if u is None or not self.ws.curvature_ok(u):
                 continue
             # LONGD before the screen only where it may prune (the link model keeps it per union)
-            if self.goal_g < math.inf and not g + self.ex.link_cost(u) + self.approach_cost[k] < self.goal_g:
+            if goal_g < math.inf and not g + self.links.link_cost(u) + self.costs[k] < goal_g:
                 continue
-            pts, dl = union_points(u)
-            free, bad = self.grid.screen(self.grid.to_lattice(pts)[None], dl)
-            if bad[0] or not (free[0] or self.certified(u, pts, dl)):
+            if not union_free_screened(self.grid, self.ws, u):
                 continue
-            self.goal_g = g + self.ex.link_cost(u) + float(self.approach_cost[k])
-            self.goal_parent = (key, [u] + self.approach_chain(self.approach_keys[k]))
-            heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
+            goal_g = g + self.links.link_cost(u) + float(self.costs[k])
+            found = (goal_g, [u] + self.chain(self.keys[k]))
+        return found
 
     def reach_all(self, limit: int) -> np.ndarray | None:
         """Poses of all the states of the goal's lattice from which a chain of primitives
@@ -351,7 +366,7 @@ class GoalApproaches:
         certified test), found at a fraction of its cost: a flood fill over the grid's
         screen only (the order of the states does not matter for their number).
         """
-        into, steps_in = self._back["into"], self._back["steps_in"]
+        into, steps_in = self.into, self.steps_in
         seen = {(0, 0, 0)}
         todo = [(0, 0, 0)]
         while todo:
@@ -368,28 +383,31 @@ class GoalApproaches:
                     seen.add(prev)
                     todo.append(prev)
         seen.discard((0, 0, 0))
-        return np.array([self.goal_pose(k) for k in sorted(seen)]).reshape(-1, 3)
+        return np.array([self.frame.pose(k) for k in sorted(seen)]).reshape(-1, 3)
 
     def enclosed(self, expanded: int) -> bool:
-        """Grow the goal's approach tree when due; True if the goal looks enclosed.
+        """Build or grow the tree when due (the search has made ``expanded`` expansions without
+        a plan); True if the goal looks enclosed.
 
-        The tree (:meth:`build_approaches`) is built after ``approach_after`` expansions.
+        The tree (:meth:`build`) is built after :attr:`Schedule.approach_after` expansions.
         If it runs out of states, it holds every state of the goal's lattice that reaches
-        the goal by primitives. Otherwise, after :data:`ENCLOSURE_AFTER` expansions without
-        a plan, :meth:`reach_all` counts such states (a superset) up to
-        ``enclosure_limit``. If they are all known and no union joins the start to any of
+        the goal by primitives. Otherwise, after :attr:`Schedule.enclosure_after` expansions,
+        the tree grows (:attr:`Schedule.approach_growth`: more targets for the search's
+        unions) and :meth:`reach_all` counts such states (a superset) up to
+        :attr:`enclosure_limit`. If they are all known and no union joins the start to any of
         them (:meth:`start_joins`), no plan made of a union and such primitives exists. A
         union from a state of the start's lattice may still reach the goal (not a proof):
-        the search goes on for :data:`ENCLOSED_EXPANSIONS` expansions.
-        ``enclosure_states`` is then the number of those states.
+        the search goes on for :attr:`Schedule.enclosed_expansions` expansions.
+        :attr:`enclosure_states` is then the number of those states.
         """
-        if self.approach_keys is None and expanded >= self.approach_after:
-            self.build_approaches(self.approach_budget, self.approach_limit)
-            poses = self.approach_poses if self.approach_exhausted else None
-        elif self.approach_keys is not None and expanded == max(ENCLOSURE_AFTER, self.approach_after):
-            if not self.approach_exhausted:  # more targets for the search's unions
-                self.grow_approaches(int(round(APPROACH_GROWTH * self.enclosure_limit / ENCLOSURE_LIMIT)))
-            poses = self.approach_poses if self.approach_exhausted else self.reach_all(self.enclosure_limit)
+        s = self.schedule
+        if self.keys is None and expanded >= s.approach_after:
+            self.build(s.approach_limit)
+            poses = self.poses if self.exhausted else None
+        elif self.keys is not None and expanded == max(s.enclosure_after, s.approach_after):
+            if not self.exhausted:  # more targets for the search's unions
+                self.grow(int(round(s.approach_growth * self.enclosure_limit / s.enclosure_limit)))
+            poses = self.poses if self.exhausted else self.reach_all(self.enclosure_limit)
         else:
             return False
         if poses is None:

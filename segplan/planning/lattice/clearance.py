@@ -3,9 +3,9 @@
 :class:`ClearanceGrid` holds, per square cell, a lower bound of the distance to the
 enlarged obstacles and walls and whether the cell lies wholly inside one;
 :class:`DistanceField` holds a lower bound of the length of the rear point's path to the
-goal that knows the obstacles. Both serve :mod:`segplan.planning.lattice.search`; neither decides that a
-union is free where it is unsure: the package's certified test does
-(:meth:`segplan.planning.paper.expansion.Workspace.colliding`).
+goal that knows the obstacles. Both serve the A* (:mod:`segplan.planning.lattice.astar`);
+neither decides that a union is free where it is unsure: the package's certified test does
+(:meth:`segplan.planning.validity.Workspace.colliding`).
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ __all__ = [
     "grid_resolutions",
     "obstacles_near",
     "union_free_near",
+    "union_free_screened",
     "union_points",
 ]
 
@@ -307,8 +308,8 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     obstacles near them (their largest over the edges, a lower bound of the distance to a
     convex polygon) and to the walls: all above ``delta``, free; a point strictly inside an
     obstacle or beyond a wall, not free. Otherwise the package's certified test (walls by
-    :meth:`~segplan.planning.paper.expansion.Workspace.in_bounds`, then
-    :meth:`~segplan.planning.paper.expansion.Workspace.colliding` on the obstacles near the points).
+    :meth:`~segplan.planning.validity.Workspace.in_bounds`, then
+    :meth:`~segplan.planning.validity.Workspace.colliding` on the obstacles near the points).
     ``u`` may be a function without arguments that returns the union (called only then).
     """
     rows = np.ascontiguousarray(pts.T)  # (2, n): the reductions below run along rows
@@ -339,6 +340,15 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     return ws.in_bounds(u) and not ws.colliding(u, only=near), 1
 
 
+def union_free_screened(grid: ClearanceGrid, ws, u) -> bool:
+    """Is union ``u`` free? Its points (:func:`union_points`) screened on ``grid`` first: a point
+    in a blocked cell, not free; every point clear of obstacles by its covering radius, free;
+    otherwise :func:`union_free_near`."""
+    pts, dl = union_points(u)
+    free, bad = grid.screen(grid.to_lattice(pts)[None], dl)
+    return not bad[0] and bool(free[0] or union_free_near(ws, u, pts, dl)[0])
+
+
 #: Most cells of a clearance grid (beyond, a coarser grid and lattice: large floors).
 MAX_CELLS = 2.0e6
 
@@ -346,8 +356,8 @@ MAX_CELLS = 2.0e6
 def grid_resolutions(
     scenario: Scenario, tries: list[float], cell: float | None, margin: float, free_resolution: bool
 ) -> tuple[list[float], float]:
-    """Resolutions for :mod:`segplan.planning.lattice.search` to try and the clearance grid's cell (which must
-    divide each of them).
+    """Resolutions for the planner (:mod:`segplan.planning.lattice.search`) to try and the
+    clearance grid's cell (which must divide each of them).
 
     By default the cell is half the finest resolution but not below ``L / 16``; where the
     grid would exceed :data:`MAX_CELLS` (an estimate from the floor's size, any rotation), the

@@ -11,9 +11,11 @@ the steering limit on a circle of radius :data:`RADIUS_FACTORS` ``x R``.
 :func:`tight_arcs` gives such chains out of a pose (to the left and to the right, every
 :data:`TURNS` reached while every union is free) or into it (driving forwards, ending at
 the pose). :func:`escape_pairs` orders the combinations of a start arc and a goal arc
-(either may be empty) by their cost plus the Dubins length between the inner poses;
-:mod:`segplan.planning.lattice.search` searches again (at its first resolution) between the inner poses of
-each in turn when its search runs out of states, and puts the arcs around the plan it finds.
+(either may be empty) by their cost plus the Dubins length between the inner poses
+(:func:`arc_pairs`, for a scenario); the planner (:mod:`segplan.planning.lattice.search`) searches
+again (at its first resolution) between the inner poses of each in turn when its search runs
+out of states, and puts the arcs around the plan it finds (:func:`join_arcs`).
+:func:`improve_with_arcs` joins such arcs by one union where that beats a found plan.
 """
 
 from __future__ import annotations
@@ -25,18 +27,19 @@ from dataclasses import dataclass, replace
 from ...model.pose import Pose, arc_end, intrinsic_interval
 from ...model.union import Union
 from ..dubins import dubins_length_scalar
-from ..plan import NoPathError, union_longd, unions_longd
+from ..links import LinkModel
+from ..plan import Plan, union_longd, unions_longd
+from .schedule import SCHEDULE, Schedule
 
 __all__ = [
-    "IMPROVE_GAP",
-    "MAX_ESCAPES",
     "RADIUS_FACTORS",
     "STEP",
     "TURNS",
     "Arc",
+    "arc_pairs",
     "escape_pairs",
-    "escape_search",
     "improve_with_arcs",
+    "join_arcs",
     "tight_arcs",
 ]
 
@@ -151,64 +154,23 @@ def escape_pairs(starts: list[Arc], goals: list[Arc], start, goal, R: float) -> 
     return [(est, a, b) for est, _, a, b in pairs]
 
 
-#: At most this many searches between the inner poses of arc pairs.
-MAX_ESCAPES = 16
+def arc_pairs(scenario, ws, ends: str) -> list[tuple]:
+    """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
+    ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first.
 
-
-def escape_search(scenario, ws, exc, search, max_expansions: int, deadline: float, t0: float):
-    """Search again between the inner poses of tight arcs (:func:`escape_pairs`).
-
-    Parameters
-    ----------
-    scenario : segplan.Scenario
-    ws : segplan.planning.validity.Workspace
-        The scenario's certified tests.
-    exc : NoPathError
-        The failure of the search between the start and the goal; re-raised (with the
-        expansions and the time of every try added) if no pair leads to a plan. Its
-        ``escapable``: ``"both"`` (the lattice ran out of states: arcs at both ends) or
-        ``"goal"`` (the goal looked enclosed: arcs into the goal only).
-    search : callable
-        ``search(scenario, max_expansions, time_limit) -> Plan`` (raises NoPathError).
-    max_expansions, deadline, t0 : int, float, float
-        The limits of the whole call: expansions (the failed search's count), the time
-        at which to stop, and when the call began.
-
-    Returns
-    -------
-    segplan.Plan
-        The arcs around the plan between their inner poses; ``kinds`` ``"arc"`` for the
-        arcs' nodes (the start stays ``"start"``, the goal ``"goal"``).
+    ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
+    ``"both"`` after an exhausted lattice, ``"goal"`` after one whose goal looked enclosed.
     """
-    from ..links import LinkModel
-
     links = LinkModel(ws)
     R = scenario.robot.min_turning_radius
-    starts = tight_arcs(ws, links, scenario.start, R) if exc.escapable == "both" else []
+    starts = tight_arcs(ws, links, scenario.start, R) if ends == "both" else []
     goals = tight_arcs(ws, links, scenario.goal, R, into=True)
-    used = exc.expanded
-    for _, a, b in escape_pairs(starts, goals, scenario.start, scenario.goal, R)[:MAX_ESCAPES]:
-        left = deadline - time.perf_counter()
-        if used >= max_expansions or left <= 0:
-            break
-        sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
-        try:
-            inner = search(sub, max_expansions - used, left)
-        except NoPathError as e:
-            used += e.expanded
-            continue
-        return _join(scenario, a, inner, b, used + inner.expanded, t0)
-    exc.expanded = used
-    exc.seconds = time.perf_counter() - t0
-    raise exc
+    return escape_pairs(starts, goals, scenario.start, scenario.goal, R)
 
 
-#: A plan is worth improving by tight arcs when it costs more than this many times the
-#: Dubins length of its ends (a lower bound's stand-in).
-IMPROVE_GAP = 1.3
-
-
-def improve_with_arcs(scenario, ws, plan, t0: float):
+def improve_with_arcs(
+    scenario, ws, plan: Plan, t0: float, deadline: float = math.inf, schedule: Schedule = SCHEDULE
+) -> Plan:
     """A cheaper plan through tight arcs at its ends, or ``plan`` itself.
 
     The lattice cannot follow a circle tighter than its primitives; where the best route
@@ -216,14 +178,15 @@ def improve_with_arcs(scenario, ws, plan, t0: float):
     its plan goes the long way round. Arcs (:func:`tight_arcs`) at either end are joined by
     the paper's direct union between their inner poses, for every pair whose estimate
     (:func:`escape_pairs`) beats the plan; the cheapest free plan wins. Tried only when
-    ``plan.cost`` exceeds :data:`IMPROVE_GAP` times the Dubins length of the ends (a
-    search between the arcs, tried too, cost more time than it won length).
+    ``plan.cost`` exceeds :attr:`Schedule.improve_gap` times the Dubins length of the ends (a
+    search between the arcs, tried too, cost more time than it won length). No pair is tried
+    once ``deadline`` (a :func:`time.perf_counter` value) has passed: the best plan so far.
     """
-    from ..links import LinkModel
-
     R = scenario.robot.min_turning_radius
     s, g = Pose(*scenario.start), Pose(*scenario.goal)
-    if not plan.cost > IMPROVE_GAP * dubins_length_scalar(*s, *g, R):
+    if not plan.cost > schedule.improve_gap * dubins_length_scalar(*s, *g, R):
+        return plan
+    if time.perf_counter() > deadline:
         return plan
     links = LinkModel(ws)
     pairs = escape_pairs(tight_arcs(ws, links, s, R), tight_arcs(ws, links, g, R, into=True), s, g, R)
@@ -231,17 +194,22 @@ def improve_with_arcs(scenario, ws, plan, t0: float):
     for est, a, b in pairs:
         if est >= best.cost:
             break  # ordered by this estimate: no later pair can win
+        if time.perf_counter() > deadline:
+            break
         u = links.union(a.inner if a else s, b.inner if b else g)
         if u is not None and ws.union_free(u):
-            cand = _join(scenario, a, (u,), b, plan.expanded, t0, plan)
+            cand = join_arcs(scenario, a, (u,), b, plan.expanded, t0, plan)
             if cand.cost < best.cost:
                 best = cand
     return best
 
 
-def _join(scenario, a, middle, b, expanded: int, t0: float, template=None):
+def join_arcs(
+    scenario, a: Arc | None, middle, b: Arc | None, expanded: int, t0: float, template=None
+) -> Plan:
     """The plan of arc ``a`` (or None), ``middle`` (a Plan, or a tuple of unions made in
-    the frame of ``template``'s plan), arc ``b`` (or None)."""
+    the frame of ``template``'s plan), arc ``b`` (or None); ``kinds`` ``"arc"`` for the arcs'
+    nodes (the start stays ``"start"``, the goal ``"goal"``)."""
     front = a.unions if a else ()
     back = b.unions if b else ()
     direct = isinstance(middle, tuple)

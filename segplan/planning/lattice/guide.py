@@ -1,6 +1,6 @@
 """A heading-aware cost-to-go over a coarse lattice: the lattice planner's guide on hard floors.
 
-Beyond the paper (issue 12). The lattice search's ``h'`` (:mod:`segplan.planning.lattice.search`) is the
+Beyond the paper (issue 12). The lattice search's ``h'`` (:mod:`segplan.planning.lattice.astar`) is the
 larger of two bounds: the Dubins length (knows the heading, not the obstacles) and the
 :class:`segplan.planning.lattice.clearance.DistanceField` (knows the obstacles, not the heading). Where the
 goal must be reached by a loop around obstacles, both lie far below the true cost, and A*
@@ -30,24 +30,22 @@ again on that lattice and kept if the start has a route there.
 
 from __future__ import annotations
 
-import heapq
 import math
 
 import numpy as np
 
-from .approach import GOAL
-from .primitives import NH, heading_angles, heading_tables, primitive_set
+from .frame import NH, heading_angles
+from .primitives import primitive_set
 
 __all__ = [
     "COARSE_CELLS",
     "FINER_CELLS",
     "FINER_TURN",
-    "GUIDED_WEIGHT",
-    "GUIDE_AFTER",
     "MAX_STATES",
     "SEED_RADIUS",
-    "Guided",
+    "Guide",
     "HeadingField",
+    "turns_tighter",
 ]
 
 #: The coarse lattice's cell: ``L / COARSE_CELLS`` (a stored primitive set).
@@ -61,11 +59,6 @@ MAX_STATES = 400_000
 #: Coarse states within this many coarse cells of the goal, at most one heading step from
 #: its heading, seed the Dijkstra.
 SEED_RADIUS = 3.0
-#: Expansions without a plan after which the search builds the coarse cost-to-go
-#: (:class:`segplan.planning.lattice.guide.HeadingField`) and re-ranks its open list by it.
-GUIDE_AFTER = 64
-#: The weight on ``h'`` once the coarse cost-to-go guides the search (at most the search's own).
-GUIDED_WEIGHT = 1.2
 
 #: Swept points of a coarse primitive tested against the blocked cells: abscissae and
 #: positions along the segment (indices into the primitives' 13 x 7 samples).
@@ -106,7 +99,7 @@ class HeadingField:
         self.rc = rc = float(resolution)
         q = int(round(rc / grid.cell))
         ps = primitive_set(L, robot.max_steer, rc)
-        points, _, _, step, cost = heading_tables(ps, grid.cell)
+        points, _, _, step, cost = ps.heading_tables(grid.cell)
         # coarse points whose grid cell (and a margin of one coarse primitive) lies in the grid
         reach = max(float(np.abs(p).max()) for p in points)
         m = int(math.ceil(reach / grid.cell)) + 1
@@ -212,53 +205,58 @@ class HeadingField:
         return rc
 
 
-class Guided:
-    """The lattice search's use of :class:`HeadingField` (a mixin of its search class, which
-    holds ``grid``, ``robot``, ``L``, ``r``, ``goal_l``, ``g``, ``heap``, ``weight``, ``h`` and
-    ``h_state``)."""
+def turns_tighter(robot, coarse: float, fine: float) -> bool:
+    """Does the lattice of cell ``fine`` turn tighter than that of ``coarse`` (:data:`FINER_TURN`)?"""
+    L, steer = robot.L, robot.max_steer
+    wide = primitive_set(L, steer, coarse).turning_radii().min()
+    return bool(wide > FINER_TURN * primitive_set(L, steer, fine).turning_radii().min())
 
-    ctg: HeadingField | None = None
 
-    def guided(self, x: float, y: float, hi: int, bound: float) -> float:
+class Guide:
+    """The lattice search's guide: the coarse cost-to-go once built, and ``h'`` raised to it.
+
+    Parameters
+    ----------
+    grid : segplan.planning.lattice.clearance.ClearanceGrid
+        The search's clearance grid (lattice frame).
+    robot : segplan.Robot
+    goal : (x, y, theta)
+        The goal in the lattice frame.
+
+    Attributes
+    ----------
+    field : HeadingField or None
+        The cost-to-go, once :meth:`build` made it.
+    """
+
+    def __init__(self, grid, robot, goal):
+        self.grid, self.robot, self.goal = grid, robot, goal
+        self.field: HeadingField | None = None
+
+    def raise_bound(self, x: float, y: float, hi: int, bound: float) -> float:
         """``bound`` raised to the coarse cost-to-go at ``(x, y)``, heading ``hi``, once built;
         where that is infinite, ``bound`` plus the field's largest finite value (module docstring)."""
-        if self.ctg is not None:
-            e = self.ctg.estimate(x, y, hi)
+        if self.field is not None:
+            e = self.field.estimate(x, y, hi)
             if e == math.inf:
-                return bound + self.ctg.worst
+                return bound + self.field.worst
             if bound < e:
                 return e
         return bound
 
-    def _tighter(self, coarse: float, fine: float) -> bool:
-        """Does the lattice of cell ``fine`` turn tighter than that of ``coarse`` (:data:`FINER_TURN`)?"""
-        L, steer = self.robot.L, self.robot.max_steer
-        wide = primitive_set(L, steer, coarse).turning_radii().min()
-        return bool(wide > FINER_TURN * primitive_set(L, steer, fine).turning_radii().min())
-
-    def guide(self, h_known: dict, closed: set) -> None:
-        """Build the coarse cost-to-go (:class:`segplan.planning.lattice.guide.HeadingField`; again at
-        ``L / FINER_CELLS`` if the start has no coarse route and that lattice turns tighter)
-        and re-rank the open list by it (the states' ``h'`` are computed anew, once per state
-        in ``h_known``; the entries of expanded states, in ``closed``, are dropped)."""
-        rc = HeadingField.resolution(self.grid, self.L)
+    def build(self) -> bool:
+        """Build the coarse cost-to-go (:class:`HeadingField`; again at ``L / FINER_CELLS`` if the
+        start has no coarse route and that lattice turns tighter, :func:`turns_tighter`).
+        False if the grid admits no coarse lattice (:meth:`HeadingField.resolution`)."""
+        L = self.robot.L
+        rc = HeadingField.resolution(self.grid, L)
         if rc is None:
-            return
-        self.ctg = HeadingField(self.grid, self.robot, self.goal_l, rc)
-        if self.ctg.estimate(0.0, 0.0, 0) == math.inf:  # the start (lattice origin) has no route
-            fine = HeadingField.resolution(self.grid, self.L, FINER_CELLS)
-            if fine is not None and self._tighter(rc, fine):
-                ctg = HeadingField(self.grid, self.robot, self.goal_l, fine)
-                if ctg.estimate(0.0, 0.0, 0) < math.inf:
-                    self.ctg = ctg
-        self.weight = min(self.weight, GUIDED_WEIGHT)  # a closer estimate needs less weight
-        h_known.clear()
-        heap = []
-        for f, n, key in self.heap:
-            if key != GOAL:
-                if key in closed or key not in self.g:
-                    continue  # expanded, or its edge failed and no other joins it yet
-                f = self.g[key] + self.h_state(key, h_known)
-            heap.append((f, n, key))
-        heapq.heapify(heap)
-        self.heap[:] = heap
+            return False
+        self.field = HeadingField(self.grid, self.robot, self.goal, rc)
+        if self.field.estimate(0.0, 0.0, 0) == math.inf:  # the start (lattice origin) has no route
+            fine = HeadingField.resolution(self.grid, L, FINER_CELLS)
+            if fine is not None and turns_tighter(self.robot, rc, fine):
+                field = HeadingField(self.grid, self.robot, self.goal, fine)
+                if field.estimate(0.0, 0.0, 0) < math.inf:
+                    self.field = field
+        return True

@@ -45,15 +45,14 @@ stored sets (:func:`selection_margins`; ``tests/test_primitives_data.py``).
 Every primitive also carries points of its swept segment (rear point A, front wheel B and
 points between them, at abscissae along the union) relative to its start, and ``delta``:
 every point of the swept segment lies within ``delta`` of one of them. A planner screens
-a primitive by these points (:mod:`segplan.planning.lattice.search`).
+a primitive by these points (:mod:`segplan.planning.lattice.astar`).
 """
 
 from __future__ import annotations
 
 import functools
 import math
-import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -62,20 +61,17 @@ from ...model.cost import longd_exact_intrinsic, longd_gauss_intrinsic
 from ...model.frame import heuristic_alpha
 from ...model.pose import alpha_interval, wrap
 from ...model.union import Union, cubic_coefficients
+from .frame import HEADING_VECTORS, NH, LatticeFrame, heading_angles
 
 __all__ = [
     "DATA_PATH",
     "FIELDS",
-    "HEADING_VECTORS",
     "STORED_CELLS",
     "STORED_STEER",
     "Primitive",
     "PrimitiveSet",
     "compute_primitive_set",
-    "fine_points",
     "from_arrays",
-    "heading_angles",
-    "heading_tables",
     "max_reach",
     "primitive_arrays",
     "primitive_set",
@@ -83,12 +79,6 @@ __all__ = [
     "stored_sets",
 ]
 
-#: The 16 grid-aligned headings, as integer direction vectors (counter-clockwise from +x).
-HEADING_VECTORS = (
-    (1, 0), (2, 1), (1, 1), (1, 2), (0, 1), (-1, 2), (-1, 1), (-2, 1),
-    (-1, 0), (-2, -1), (-1, -1), (-1, -2), (0, -1), (1, -2), (1, -1), (2, -1),
-)  # fmt: skip
-NH = len(HEADING_VECTORS)
 #: A primitive is dropped if a chain of kept ones reaches its end state within this factor.
 PRUNE = 0.03
 #: Turns (heading steps) of the turning primitives.
@@ -104,16 +94,11 @@ RANK_DECIMALS = 9
 #: Abscissae (fractions of the frame span) and positions along the segment of the samples.
 SAMPLE_S = np.linspace(0.0, 1.0, 13)
 SAMPLE_T = np.linspace(0.0, 1.0, 7)
-#: The finer samples of :func:`fine_points` (a tighter screen near obstacles).
+#: The finer samples of :meth:`PrimitiveSet.fine_points` (a tighter screen near obstacles).
 FINE_S = np.linspace(0.0, 1.0, 49)
 FINE_T = np.linspace(0.0, 1.0, 25)
 _STEER_ALPHAS = 15
 _PEAK_S = np.linspace(0.0, 1.0, 49)
-
-
-def heading_angles() -> np.ndarray:
-    """World angles (radians, in ``(-pi, pi]``) of the 16 lattice headings."""
-    return np.array([math.atan2(y, x) for x, y in HEADING_VECTORS])
 
 
 @dataclass(frozen=True)
@@ -153,25 +138,6 @@ class Primitive:
     points: np.ndarray
     delta: float
 
-    def union(self, x: float, y: float, theta0: float, r: float, L: float) -> Union:
-        """The primitive's union from the world pose ``(x, y, theta0)`` of its start.
-
-        ``theta0`` is the world heading of the start state (the lattice's heading ``h0``)
-        and ``r`` the cell size; the end pose is the start moved by ``(di, dj)`` cells in
-        the lattice axes, which make the angle ``theta0 - heading_angles()[h0]`` with the
-        world axes.
-        """
-        rot = theta0 - _ANGLES[self.h0]
-        c, s = math.cos(rot), math.sin(rot)
-        ex, ey = self.di * r, self.dj * r
-        p1 = (
-            x + c * ex - s * ey,
-            y + s * ex + c * ey,
-            float(wrap(theta0 + (_ANGLES[self.h1] - _ANGLES[self.h0]))),
-        )
-        psi = math.atan2(p1[1] - y, p1[0] - x)
-        return Union.from_intrinsic((x, y, theta0), p1, self.alpha, L, self.d, psi, self.phi0, self.phi1)
-
 
 _ANGLES = heading_angles()
 
@@ -191,6 +157,9 @@ class PrimitiveSet:
     max_steer: float
     resolution: float
     by_heading: tuple
+    #: What :meth:`fine_points` and :meth:`heading_tables` computed for this set (kept while
+    #: the set lives; not part of its value).
+    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def min_turning_radius(self) -> float:
@@ -215,6 +184,64 @@ class PrimitiveSet:
         """Primitives per heading, on average."""
         return sum(len(b) for b in self.by_heading) // NH
 
+    def fine_points(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """Per heading ``h``: finer swept-segment points of the primitives ``by_heading[h]``
+        (array ``(m, n, 2)``, relative to the start, lattice axes; :data:`FINE_S` x :data:`FINE_T`)
+        and their covering radii ``(m,)``, smaller than :attr:`Primitive.delta`.
+
+        A planner screens a primitive by these where its coarse points are not conclusive
+        (close to an obstacle), before the certified test. Computed once per set.
+        """
+        out = self._derived.get("fine")
+        if out is None:
+            frame = LatticeFrame((0.0, 0.0, 0.0), self.resolution, self.L)
+            base = []
+            for h in range(4):
+                pts, dl = [], []
+                for p in self.by_heading[h]:
+                    q, d = _sample(frame.union((0, 0, h), p), self.L, FINE_S, FINE_T)
+                    pts.append(q)
+                    dl.append(d)
+                base.append((np.stack(pts), np.array(dl)))
+            out = []
+            for h in range(NH):
+                pts, dl = base[h % 4]
+                for _ in range(h // 4):
+                    pts = np.stack((-pts[..., 1], pts[..., 0]), axis=-1)
+                out.append((np.ascontiguousarray(pts), dl))
+            out = self._derived["fine"] = tuple(out)
+        return out
+
+    def heading_tables(self, cell: float) -> tuple:
+        """Per heading, the tables the lattice search (:mod:`segplan.planning.lattice.astar`) expands with.
+
+        Parameters
+        ----------
+        cell : float
+            The clearance grid's cell size (metres).
+
+        Returns
+        -------
+        tuple
+            ``(points, cells, delta, step, cost)``, each a list over the headings: the
+            primitives' sampled points, their cells ``(i, j)`` relative to the start's cell,
+            covering radii (plus 1e-9), steps ``(di, dj, h1)`` and LONGD costs [1]. Computed
+            once per cell.
+        """
+        key = ("tables", float(cell))
+        out = self._derived.get(key)
+        if out is None:
+            points, cells, delta, step, cost = [], [], [], [], []
+            for prims in self.by_heading:
+                pts = np.stack([p.points for p in prims])
+                points.append(pts)
+                cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
+                delta.append(np.array([p.delta for p in prims]) + 1e-9)
+                step.append([(p.di, p.dj, p.h1) for p in prims])
+                cost.append([p.cost for p in prims])
+            out = self._derived[key] = (points, cells, delta, step, cost)
+        return out
+
 
 def _rotate_quarter(p: Primitive, q: int) -> Primitive:
     """``p`` turned by ``q`` quarter turns (exact in lattice integers)."""
@@ -223,9 +250,19 @@ def _rotate_quarter(p: Primitive, q: int) -> Primitive:
         di, dj = -dj, di
         pts = np.column_stack((-pts[:, 1], pts[:, 0]))
     return Primitive(
-        (p.h0 + 4 * q) % NH, (p.h1 + 4 * q) % NH, di, dj, p.cost, p.alpha, p.d, p.phi0, p.phi1,
-        p.peak_curvature, np.ascontiguousarray(pts), p.delta,
-    )  # fmt: skip
+        (p.h0 + 4 * q) % NH,
+        (p.h1 + 4 * q) % NH,
+        di,
+        dj,
+        p.cost,
+        p.alpha,
+        p.d,
+        p.phi0,
+        p.phi1,
+        p.peak_curvature,
+        np.ascontiguousarray(pts),
+        p.delta,
+    )
 
 
 def _chord_reach(r: float, R: float) -> float:
@@ -352,41 +389,6 @@ def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
     for q in range(4):
         out.append(((p.h0 + 4 * q) % NH, di, dj, (p.h1 + 4 * q) % NH, p.cost))
         di, dj = -dj, di
-    return out
-
-
-_FINE: dict[int, tuple] = {}  # id of a live set -> its fine points (dropped with the set)
-
-
-def fine_points(ps: PrimitiveSet) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
-    """Per heading ``h``: finer swept-segment points of the primitives ``ps.by_heading[h]``
-    (array ``(m, n, 2)``, relative to the start, lattice axes; :data:`FINE_S` x :data:`FINE_T`)
-    and their covering radii ``(m,)``, smaller than :attr:`Primitive.delta`.
-
-    A planner screens a primitive by these where its coarse points are not conclusive
-    (close to an obstacle), before the certified test. Computed once per set (kept while
-    the set lives).
-    """
-    out = _FINE.get(id(ps))
-    if out is None:
-        base = []
-        for h in range(4):
-            pts, dl = [], []
-            for p in ps.by_heading[h]:
-                u = p.union(0.0, 0.0, float(_ANGLES[h]), ps.resolution, ps.L)
-                q, d = _sample(u, ps.L, FINE_S, FINE_T)
-                pts.append(q)
-                dl.append(d)
-            base.append((np.stack(pts), np.array(dl)))
-        out = []
-        for h in range(NH):
-            pts, dl = base[h % 4]
-            for _ in range(h // 4):
-                pts = np.stack((-pts[..., 1], pts[..., 0]), axis=-1)
-            out.append((np.ascontiguousarray(pts), dl))
-        out = tuple(out)
-        _FINE[id(ps)] = out
-        weakref.finalize(ps, _FINE.pop, id(ps), None)
     return out
 
 
@@ -604,41 +606,3 @@ def compute_primitive_set(
         per[key] = per.get(key, 0) + 1
         keep(p)
     return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))
-
-
-_TABLES: dict = {}  # (id of a live primitive set, cell) -> its per-heading tables
-
-
-def heading_tables(ps: PrimitiveSet, cell: float) -> tuple:
-    """Per heading, the tables the lattice search (:mod:`segplan.planning.lattice.search`) expands with.
-
-    Parameters
-    ----------
-    ps : PrimitiveSet
-        The motion primitives.
-    cell : float
-        The clearance grid's cell size (metres).
-
-    Returns
-    -------
-    tuple
-        ``(points, cells, delta, step, cost)``, each a list over the headings: the
-        primitives' sampled points, their cells ``(i, j)`` relative to the start's cell,
-        covering radii (plus 1e-9), steps ``(di, dj, h1)`` and LONGD costs [1]. Computed
-        once per primitive set and cell (kept while the set lives).
-    """
-    key = (id(ps), float(cell))
-    out = _TABLES.get(key)
-    if out is None:
-        points, cells, delta, step, cost = [], [], [], [], []
-        for prims in ps.by_heading:
-            pts = np.stack([p.points for p in prims])
-            points.append(pts)
-            cells.append(tuple(np.floor(pts[..., k] / cell).astype(np.int64) for k in (0, 1)))
-            delta.append(np.array([p.delta for p in prims]) + 1e-9)
-            step.append([(p.di, p.dj, p.h1) for p in prims])
-            cost.append([p.cost for p in prims])
-        out = (points, cells, delta, step, cost)
-        _TABLES[key] = out
-        weakref.finalize(ps, _TABLES.pop, key, None)
-    return out

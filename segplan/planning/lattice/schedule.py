@@ -1,0 +1,140 @@
+"""The lattice planner's expansion schedule: when each of its mechanisms starts, and how much it does.
+
+Beyond the paper (issue 12; gathered in one record by issue 24). The A* of
+:mod:`segplan.planning.lattice.astar` runs plain weighted A* first; mechanisms for the hard
+floors join it after so many expansions without a plan: the goal's approach tree and its
+enclosure test (:mod:`segplan.planning.lattice.approach`), the coarse cost-to-go
+(:mod:`segplan.planning.lattice.guide`); after a search, the tight arcs
+(:mod:`segplan.planning.lattice.escape`) and the shortcuts of a found plan
+(:mod:`segplan.planning.lattice.search`). Every count and limit that decides when and how much
+is a field of :class:`Schedule`, documented with the measurement that set it, or with the
+commit that set it by hand where none is recorded. :data:`SCHEDULE` is the default, the values
+every plan of the package is made with.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+from ..plan import check_option
+
+__all__ = ["SCHEDULE", "Schedule"]
+
+
+@dataclass(frozen=True)
+class Schedule:
+    """Expansion counts and limits of the lattice planner (module docstring).
+
+    Counts of expansions are those of one search (one resolution); "at ``L / 8``" means the
+    value at the default resolution, scaled where noted.
+
+    Attributes
+    ----------
+    approach_after : int
+        Expansions before the goal's approach tree is built (the search may reach the goal
+        by a direct union alone). Set by hand in 5ef841b; not measured.
+    approach_limit : int
+        States of the approach tree when first built. Set by hand in 5ef841b; not measured.
+    approach_tries : int
+        Unions built from an expanded state near the goal to the most promising approach
+        states (after :attr:`approach_candidates` are screened by
+        :func:`segplan.planning.lattice.approach.steerable`); 0: none (the tree serves the
+        enclosure test only). Set by hand in 5ef841b; not measured.
+    approach_candidates : int
+        Approach states, the most promising first by ``g`` + Dubins length + their cost,
+        screened by ``steerable`` before the :attr:`approach_tries` unions. Set by hand in
+        755f729; not measured.
+    steer_slack : float
+        ``steerable`` keeps a pose whose sampled peak curvature is below ``steer_slack`` times
+        the steering limit (the coarse samples misjudge some unions; a heuristic that only
+        orders the tries). Set by hand in 755f729; not measured.
+    enclosure_after : int
+        Expansions without a plan after which the goal's enclosure test counts the states
+        that reach the goal and the approach tree grows (:attr:`approach_growth`). Set by
+        hand in 755f729; not measured.
+    enclosure_limit : int
+        States (at ``L / 8``; times 4 per halving of the resolution and ``(R / L)^2`` for a
+        robot turning wider than ``L``, 621d5a3) up to which the enclosure test counts: more,
+        and the goal does not look enclosed. Set by hand in 755f729; not measured.
+    approach_growth : int
+        States the approach tree grows to at :attr:`enclosure_after` (at ``L / 8``; scaled
+        as :attr:`enclosure_limit`). Measured (621d5a3, was 300): on the 400 random floors
+        of chapter 9, growing it to 300 found no plan that 120 did not.
+    enclosed_expansions : int
+        Expansions the search goes on once the goal looks enclosed, before it stops (not a
+        proof: a union from the start's lattice may still reach the goal). Measured
+        (4d8cc7e, was 512): on chapter 9's 400 random floors, 100 floors with walls close
+        ahead and 80 floors of varied robots, the plans found after the goal looked enclosed
+        came 34 and 125 expansions later; the same successes and lengths, failures end
+        sooner (median 461 -> 296 ms on the 400 floors).
+    guide_after : int
+        Expansions without a plan after which the coarse cost-to-go
+        (:class:`segplan.planning.lattice.guide.HeadingField`) is built and re-ranks the open
+        list. Measured (5fdf5b3, was 200): on the 400 random floors, median plan time of the
+        solved floors about 67 -> 52 ms, the same median and worst length ratio; any-164
+        (1444 expansions with the guide at 64) no longer solved within 1000.
+    guided_weight : float
+        The weight on ``h'`` once the guide is built (at most the search's own: a closer
+        estimate needs less weight). Set with the guide in 4f681d4, whose measurement is of the
+        guide as a whole (400 random floors: any headings 137 -> 149 of OMPL's 149 solved);
+        this value alone not measured.
+    deadline_every : int
+        Expansions between two looks at the clock (the time limit). Set by hand in 4a98571;
+        not measured.
+    grid_margin : (float, float)
+        ``(a, b)``: on floors without walls the clearance grid covers the obstacles, start and
+        goal with a margin of ``a L + b R`` (beyond it every point counts as that far from any
+        obstacle), also the margin of the grid's size estimate. Set by hand in 4a98571; not
+        measured.
+    max_escapes : int
+        Searches at most between the inner poses of tight arcs when the lattice fails. Set by
+        hand in 4f681d4; not measured.
+    improve_gap : float
+        A found plan is worth improving by tight arcs when it costs more than this many times
+        the Dubins length of its ends. Set by hand in 4f681d4; not measured.
+    shortcut_window : int
+        Nodes ahead that the greedy shortcuts of a found plan try to reach by one union. Set
+        by hand in aff5201; not measured.
+    """
+
+    approach_after: int = 32
+    approach_limit: int = 60
+    approach_tries: int = 2
+    approach_candidates: int = 8
+    steer_slack: float = 1.1
+    enclosure_after: int = 256
+    enclosure_limit: int = 300
+    approach_growth: int = 120
+    enclosed_expansions: int = 192
+    guide_after: int = 64
+    guided_weight: float = 1.2
+    deadline_every: int = 64
+    grid_margin: tuple[float, float] = (4.0, 4.0)
+    max_escapes: int = 16
+    improve_gap: float = 1.3
+    shortcut_window: int = 16
+
+    def __post_init__(self):
+        floats = {"steer_slack": 0.0, "guided_weight": 1.0, "improve_gap": 0.0}
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if f.name == "grid_margin":
+                if not (isinstance(value, tuple) and len(value) == 2):
+                    raise ValueError(f"grid_margin must be a pair (a, b) of numbers >= 0, got {value!r}")
+                for v in value:
+                    check_option(v, "grid_margin", 0.0, lo_ok=True)
+            elif f.name in floats:
+                check_option(value, f.name, floats[f.name], lo_ok=f.name == "guided_weight")
+            else:
+                check_option(value, f.name, 0 if f.name == "approach_tries" else 1, integer=True, lo_ok=True)
+                if not isinstance(value, int):
+                    raise ValueError(f"{f.name} must be an integer >= 1, got {value!r}")
+
+    def margin(self, L: float, R: float) -> float:
+        """The clearance grid's margin on floors without walls: ``a L + b R`` (:attr:`grid_margin`)."""
+        a, b = self.grid_margin
+        return a * L + b * R
+
+
+#: The default schedule: every plan of the package is made with it.
+SCHEDULE = Schedule()

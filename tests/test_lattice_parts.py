@@ -1,0 +1,222 @@
+"""The lattice planner's parts, each alone (issue 24): the lattice frame, the lazy edges, the schedule.
+
+Also the helpers the other lattice tests build a search with: :func:`astar_of` composes the
+A* that ``plan_lattice(scenario, retry=False)`` runs first from its parts (a subclass, a
+schedule or parts of the test's choosing), :func:`plan_of` runs it as the planner does.
+"""
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from segplan.planning.lattice.astar import LatticeAStar
+from segplan.planning.lattice.edges import LazyEdges
+from segplan.planning.lattice.frame import NH, LatticeFrame, heading_angles
+from segplan.planning.lattice.primitives import primitive_set
+from segplan.planning.lattice.schedule import SCHEDULE, Schedule
+from segplan.planning.lattice.search import GOAL_RADIUS, lattice_floor, lattice_resolutions
+from segplan.planning.links import LinkModel
+from segplan.planning.validity import Workspace
+
+DEG = math.pi / 180.0
+
+
+# -- helpers of the lattice tests ------------------------------------------------------------
+def astar_of(
+    sc, *, cls=LatticeAStar, resolution=None, weight=2.0, analytic_every=8, schedule=SCHEDULE, **parts
+):
+    """The A* that ``plan_lattice(sc, retry=False, ...)`` runs first (same grid, field and
+    lattice), as ``cls`` with ``schedule`` and the given ``parts``; not run."""
+    robot = sc.robot
+    tries, cell = lattice_resolutions(sc, resolution, False, None, schedule)
+    ws = Workspace(sc.enlarged, robot.L, sc.free_bounds, robot.max_curvature)
+    grid, field = lattice_floor(sc, ws, tries, cell, schedule)
+    radius = GOAL_RADIUS[0] * robot.min_turning_radius + GOAL_RADIUS[1] * robot.L
+    return cls(
+        sc, ws, LinkModel(ws), grid, field, tries[0], weight=weight, analytic_every=analytic_every,
+        goal_radius=radius, banned=set(), schedule=schedule, **parts,
+    )  # fmt: skip
+
+
+def plan_of(search, max_expansions=200_000, final_check=True):
+    """Run ``search`` as the planner does at one resolution: a found plan's unions checked by
+    the certified test (the search runs again without a refused one, unless not
+    ``final_check``). Returns ``(plan or None, outcome, plans made)``."""
+    t0 = time.perf_counter()
+    made = []
+    while True:
+        outcome, expanded = search.run(max_expansions, t0 + 120.0)
+        if outcome != "found":
+            return None, outcome, made
+        edges = search.chain(search.goal_parent[0])
+        plan = search.make_plan(edges, search.goal_parent[1], expanded, t0)
+        made.append(list(edges))
+        bad = [i for i, u in enumerate(plan.unions) if not search.ws.union_free(u)] if final_check else []
+        if not bad:
+            return plan, outcome, made
+        for i in bad:
+            search.banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
+
+
+# -- the lattice frame -----------------------------------------------------------------------
+origins = st.tuples(st.floats(-50, 50), st.floats(-50, 50), st.floats(-math.pi, math.pi))
+states = st.tuples(st.integers(-60, 60), st.integers(-60, 60), st.integers(0, NH - 1))
+
+
+def _state_of(frame, pose):
+    """The lattice state of a world pose (the inverse of LatticeFrame.pose, computed apart)."""
+    dx, dy = pose[0] - frame.x, pose[1] - frame.y
+    c, s = math.cos(frame.theta), math.sin(frame.theta)
+    i, j = (c * dx + s * dy) / frame.r, (-s * dx + c * dy) / frame.r
+    dth = math.remainder(pose[2] - frame.theta, 2 * math.pi)
+    h = int(np.argmin(np.abs(np.remainder(heading_angles() - dth + math.pi, 2 * math.pi) - math.pi)))
+    return (i, j, h)
+
+
+@settings(max_examples=200)
+@given(origin=origins, key=states, r=st.sampled_from([0.0625, 0.125, 0.25]))
+def test_state_to_pose_to_state(origin, key, r):
+    frame = LatticeFrame(origin, r, 1.0)
+    i, j, h = _state_of(frame, frame.pose(key))
+    assert (i, j) == pytest.approx(key[:2], abs=1e-6) and h == key[2]
+
+
+def test_the_origin_state_is_the_origin_pose():
+    frame = LatticeFrame((1.5, -2.0, 0.7), 0.125, 1.0)
+    assert frame.pose((0, 0, 0)) == (1.5, -2.0, 0.7)
+    assert frame.pose((0, 0, 4)) == pytest.approx((1.5, -2.0, 0.7 + math.pi / 2))
+
+
+@settings(max_examples=60)
+@given(origin=origins, key=states, r=st.sampled_from([0.0625, 0.125]))
+def test_a_primitives_union_joins_the_two_states_poses(origin, key, r):
+    frame = LatticeFrame(origin, r, 1.0)
+    for p in primitive_set(1.0, 45 * DEG, r).by_heading[key[2]]:
+        u = frame.union(key, p)
+        end = frame.end(key, p)
+        assert end == (key[0] + p.di, key[1] + p.dj, p.h1)
+        assert tuple(u.p0) == frame.pose(key) and tuple(u.p1) == frame.pose(end)  # exactly
+        assert u.alpha == p.alpha and u.d == pytest.approx(p.d, rel=1e-9)
+
+
+# -- the lazy edges on a toy graph -----------------------------------------------------------
+class _Toy:
+    """Edges ``(state, m)`` with a grid screen and a check chosen by the test; logs the checks."""
+
+    def __init__(self, screen=None, passing=()):
+        self.screens = screen or {}
+        self.passing = set(passing)
+        self.checked = []
+
+    def screen(self, edge):
+        return self.screens.get(edge, (False, False))
+
+    def check(self, edge):
+        self.checked.append(edge)
+        return edge in self.passing
+
+
+def test_a_deferred_edge_is_checked_once_when_its_state_is_due():
+    toy = _Toy(passing={("a", 0)})
+    edges = LazyEdges(toy.screen, toy.check)
+    edges.defer("x", free=False)
+    edges.defer("y", free=True)  # the grid cleared it: nothing to check
+    assert edges.pending("x") and not edges.pending("y")
+    assert toy.checked == []  # nothing checked before the state is due
+    assert edges.check("x", ("a", 0))
+    assert not edges.pending("x") and toy.checked == [("a", 0)]
+    edges.defer("z", free=False)
+    edges.defer("z", free=True)  # a new edge the grid clears replaces the unsure one
+    assert not edges.pending("z")
+
+
+def test_a_failed_check_is_remembered_and_the_edge_never_used_again():
+    toy = _Toy()
+    edges = LazyEdges(toy.screen, toy.check)
+    edges.defer("x", free=False)
+    assert not edges.check("x", ("a", 0))
+    assert ("a", 0) in edges.failed
+    toy.passing.add(("a", 0))  # even if it would pass now
+    assert edges.repair([(1.0, "a", ("a", 0))]) is None
+    assert toy.checked == [("a", 0)]  # the repair skipped it without a check
+
+
+def test_repair_takes_the_cheapest_passing_edge():
+    options = [(3.0, "c", ("c", 0)), (1.0, "a", ("a", 0)), (2.0, "b", ("b", 1)), (2.0, "b", ("b", 0))]
+    # the cheapest fails its check, ("b", 0) is certainly failing on the grid, ("b", 1) passes
+    toy = _Toy(screen={("b", 0): (False, True)}, passing={("b", 1), ("c", 0)})
+    edges = LazyEdges(toy.screen, toy.check)
+    assert edges.repair(options) == (2.0, "b", ("b", 1))
+    assert toy.checked == [("a", 0), ("b", 1)]  # cheapest first; the grid's failure unchecked
+    assert edges.failed == {("a", 0), ("b", 0)}
+    # an edge the grid clears needs no check
+    toy2 = _Toy(screen={("c", 0): (True, False)})
+    assert LazyEdges(toy2.screen, toy2.check).repair(options[:1]) == options[0] and toy2.checked == []
+
+
+def test_repair_within_a_budget_and_without_a_passing_edge():
+    toy = _Toy(passing={("a", 0), ("b", 0)})
+    edges = LazyEdges(toy.screen, toy.check)
+    assert edges.repair([(5.0, "a", ("a", 0)), (4.0, "b", ("b", 0))], budget=4.5) == (4.0, "b", ("b", 0))
+    edges.reset()
+    assert edges.repair([(5.0, "a", ("a", 0))], budget=4.5) is None
+    assert ("a", 0) in edges.failed  # over the budget: not used again
+    assert edges.repair([]) is None
+
+
+# -- the schedule ----------------------------------------------------------------------------
+def test_the_default_schedule_is_the_one_every_plan_was_made_with():
+    # the values the search used before the record (issue 24): pinned
+    assert dataclasses.asdict(SCHEDULE) == {
+        "approach_after": 32,
+        "approach_limit": 60,
+        "approach_tries": 2,
+        "approach_candidates": 8,
+        "steer_slack": 1.1,
+        "enclosure_after": 256,
+        "enclosure_limit": 300,
+        "approach_growth": 120,
+        "enclosed_expansions": 192,
+        "guide_after": 64,
+        "guided_weight": 1.2,
+        "deadline_every": 64,
+        "grid_margin": (4.0, 4.0),
+        "max_escapes": 16,
+        "improve_gap": 1.3,
+        "shortcut_window": 16,
+    }
+    assert SCHEDULE == Schedule()
+    assert SCHEDULE.margin(1.0, 1.0) == 8.0 and SCHEDULE.margin(0.5, 2.0) == 4.0 * 0.5 + 4.0 * 2.0
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [
+        ("approach_after", 0),
+        ("approach_after", 2.5),
+        ("approach_after", True),
+        ("approach_tries", -1),
+        ("enclosure_limit", float("nan")),
+        ("guided_weight", 0.9),
+        ("steer_slack", 0.0),
+        ("improve_gap", -1.0),
+        ("grid_margin", (4.0,)),
+        ("grid_margin", (4.0, -1.0)),
+        ("deadline_every", "64"),
+    ],
+)
+def test_a_bad_schedule_is_refused_naming_the_field(field, value):
+    with pytest.raises(ValueError, match=field):
+        Schedule(**{field: value})
+
+
+def test_a_schedule_is_a_frozen_value():
+    s = Schedule(approach_tries=0, guide_after=10**9)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.guide_after = 1  # type: ignore[misc]
+    assert s == dataclasses.replace(SCHEDULE, approach_tries=0, guide_after=10**9)
