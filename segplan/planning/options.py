@@ -175,7 +175,7 @@ class PaperOptions:
     ----------
     heuristic : {"a", "b", "c"}
         ``h'``: (a) LONGD of the direct union, (b) distance, (c) their weighted average
-        (the paper's three choices). "a": the paper's fastest; set in bb220de.
+        (the paper's three choices). "a": set by hand in bb220de; not measured.
     cost : {"longd", "distance"}
         Link cost: LONGD (the method) or the distance between node points (the paper's
         baseline).
@@ -300,7 +300,7 @@ class LatticeOptions:
         Tight arcs out of the start and into the goal (:mod:`segplan.planning.lattice.escape`).
     max_expansions : int
         Expansions before giving up (200000, ``LATTICE_MAX_EXPANSIONS``): set by hand in
-        bb220de's successor 4a98571; not measured.
+        4a98571 (the lattice's first cut); not measured.
     """
 
     resolution: float | None = None
