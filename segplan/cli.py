@@ -21,6 +21,7 @@ from pathlib import Path
 from . import __version__
 from .floor.scenario import ScenarioError, load_scenario, shipped_scenarios
 from .planning.api import plan_scenario
+from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
 
 __all__ = ["EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
@@ -54,8 +55,9 @@ scenario file (JSON, lengths in metres, angles in degrees):
   non-convex one (an L-shaped rack, a concave bay) is split into convex pieces
   before planning; example: segplan plan l_shaped_rack
 
-output: cost, nodes (x, y in m, theta in deg), expansions, generated nodes, time.
-With --json, one JSON object on stdout instead. With --out, a figure with the
+output: cost, nodes (x, y in m, theta in deg), expansions, generated nodes, time,
+the planner. With --json, one JSON object on stdout instead (with the planner and
+every option that made the plan). With --out, a figure with the
 obstacles (enlarged by half_width, lighter), the rear path (solid), the front-wheel
 path (dashed) and the robot at intervals.
 
@@ -147,10 +149,16 @@ def build_parser() -> argparse.ArgumentParser:
         type=int,
         default=None,
         metavar="N",
-        help="give up after N expansions (default 3000 for --planner paper, 200000 for lattice)",
+        help=f"give up after N expansions (default {PaperOptions.max_expansions} for --planner paper, "
+        f"{LatticeOptions.max_expansions} for lattice)",
     )
     p.add_argument(
-        "--time-limit", type=float, default=10.0, metavar="S", help="give up after S seconds (default 10)"
+        "--time-limit",
+        type=float,
+        default=DefaultOptions.time_limit,
+        metavar="S",
+        help="give up after S seconds; the refinement stops there too "
+        f"(default {DefaultOptions.time_limit:g})",
     )
     return parser
 
@@ -168,12 +176,14 @@ def _format_plan(result: Plan, name: str) -> str:
         f"generated   {result.generated}",
         f"time        {1000.0 * result.seconds:.1f} ms",
         f"search      heuristic {result.heuristic}, cost {result.cost_kind}, frames {result.version}",
+        f"planner     {result.planner}",
     ]
     r = result.refinement
     if r is not None:
         lines.append(
             f"refined     LONGD {r.cost_before:.4f} -> {r.cost_after:.4f} m, nodes {r.nodes_before} -> "
             f"{r.nodes_after}, {1000.0 * r.seconds:.1f} ms of the time"
+            + (" (stopped at the time limit)" if r.stopped else "")
         )
     return "\n".join(lines)
 

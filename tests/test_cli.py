@@ -19,12 +19,14 @@ def test_plan_prints_cost_nodes_expansions_time(capsys):
     out = capsys.readouterr().out
     for word in ("cost", "nodes", "expansions", "time", "start", "goal"):
         assert word in out
+    assert "planner     lattice" in out  # the plan says which planner made it
 
 
 def test_plan_json(capsys):
     assert main(["plan", SINGLE, "--json", "--heuristic", "c", "--planner", "paper"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["found"] is True and data["heuristic"] == "c"
+    assert data["planner"] == "paper" and data["options"]["heuristic"] == "c"  # what made the plan
     assert data["cost"] > 0 and data["expanded"] >= 1
     assert data["nodes"][0] == [*json.loads((SCENARIOS / "single_obstacle.json").read_text())["start"]]
 

@@ -180,16 +180,17 @@ def test_enclosure_limit_grows_with_the_turning_radius():
 def test_default_planner_caps_the_papers_search(monkeypatch):
     """The default planner runs the paper's search within api.PAPER_EXPANSIONS expansions
     (and within a smaller max_expansions if given); planner="paper" keeps its own default."""
-    from segplan.planning import api
+    from segplan.planning import api, default
 
     calls = []
-    plan = api._plan
+    search = default.paper_search
 
-    def spy(*a, **kw):
-        calls.append(kw["max_expansions"])
-        return plan(*a, **kw)
+    def spy(ctx, options, *a):
+        calls.append(options.max_expansions)
+        return search(ctx, options, *a)
 
-    monkeypatch.setattr(api, "_plan", spy)
+    monkeypatch.setattr(default, "paper_search", spy)
+    monkeypatch.setattr(api, "paper_search", spy)
     sc = _wall_goal()
     for kw in ({}, {"max_expansions": 10}):
         with pytest.raises(NoPathError):

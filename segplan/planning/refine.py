@@ -29,6 +29,10 @@ returned plan's ``cost`` is the exact LONGD [1] of its unions (Romberg), like ev
 plan, and is never above the input's: if the refined chain is not shorter, the input's
 chain is returned. The result is deterministic (no random moves, a fixed order). It is a
 local improvement: the chain keeps the corridor the search chose.
+
+Its tuning values are the fields of :class:`segplan.planning.options.RefineOptions`. Under a
+deadline (:func:`segplan.plan_scenario`'s ``time_limit``) it starts no new work once the
+deadline has passed and returns the chain so far (``Refinement.stopped``).
 """
 
 from __future__ import annotations
@@ -44,51 +48,22 @@ from ..model.cost import checked_intrinsic, longd_exact_intrinsic, longd_gauss_i
 from ..model.frame import heuristic_alpha
 from ..model.pose import Pose, alpha_interval, wrap
 from ..model.union import cubic_coefficients
+from .context import Deadline, workspace_of
 from .links import ALPHA_MARGIN, LinkModel
+from .options import RefineOptions
 from .plan import PLAN_RTOL, Plan, Refinement
 from .validity import Workspace
 
 __all__ = ["certain_failures", "refine", "refine_with"]
 
-#: Moves of a node in its own frame: (forward, left, turn) in units of the node's step
-#: (turns in units of ``step / L`` radians).
-MOVES = np.array(
-    [
-        (1, 0, 0),
-        (-1, 0, 0),
-        (0, 1, 0),
-        (0, -1, 0),
-        (0, 0, 1),
-        (0, 0, -1),
-        (0, 1, 1),
-        (0, 1, -1),
-        (0, -1, 1),
-        (0, -1, -1),
-    ],
-    dtype=float,
-)
-#: Least decrease of a node's two link costs (units of L) for a local move to be taken.
-MIN_GAIN = 1e-3
-#: Screened moves checked exactly per node update.
-CHECKS_PER_UPDATE = 1
+#: The default moves of a node (:attr:`RefineOptions.moves`), as an array.
+MOVES = np.array(RefineOptions.moves, dtype=float)
+#: The default least gain of a local move (:attr:`RefineOptions.min_gain`, units of L).
+MIN_GAIN = RefineOptions.min_gain
+#: The default screened moves checked per node update (:attr:`RefineOptions.checks_per_update`).
+CHECKS_PER_UPDATE = RefineOptions.checks_per_update
 #: Fractions of a link's frame span sampled by :func:`certain_failures`.
 SAMPLES = np.linspace(0.0, 1.0, 9)
-
-
-def _check_options(rounds, split, min_step, first_step, max_sweeps):
-    if isinstance(rounds, bool) or int(rounds) != rounds or rounds < 0:
-        raise ValueError(f"rounds must be an integer >= 0, got {rounds!r}")
-    if isinstance(max_sweeps, bool) or int(max_sweeps) != max_sweeps or max_sweeps < 0:
-        raise ValueError(f"max_sweeps must be an integer >= 0, got {max_sweeps!r}")
-    for name, value in (("split", split), ("min_step", min_step), ("first_step", first_step)):
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int | float)
-            or not (math.isfinite(value) and value > 0)
-        ):
-            raise ValueError(f"{name} must be a finite number > 0 (units of L), got {value!r}")
-    if min_step > first_step:
-        raise ValueError(f"min_step ({min_step!r}) must not exceed first_step ({first_step!r})")
 
 
 def refine(
@@ -153,47 +128,54 @@ def refine(
         raise ValueError("plan does not go from the scenario's start to its goal")
     if any(abs(u.L - scenario.robot.L) > 1e-12 * scenario.robot.L for u in plan.unions):
         raise ValueError("plan was made for another robot length than the scenario's")
-    robot = scenario.robot
-    ws = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
+    options = RefineOptions(
+        rounds=rounds, split=split, first_step=first_step, min_step=min_step, max_sweeps=max_sweeps
+    )
+    ws = workspace_of(scenario)
     for i, u in enumerate(plan.unions):
         if not ws.union_free(u):
             raise ValueError(f"plan's union {i} is not free in this scenario (a plan of another scenario?)")
-    return refine_with(
-        plan,
-        LinkModel(ws),
-        rounds=rounds,
-        split=split,
-        first_step=first_step,
-        min_step=min_step,
-        max_sweeps=max_sweeps,
-    )
+    return refine_with(plan, LinkModel(ws), options)
 
 
 def refine_with(
-    plan, links: LinkModel, *, rounds=1, split=3.0, first_step=0.5, min_step=1.0 / 16.0, max_sweeps=6
+    plan, links: LinkModel, options: RefineOptions | None = None, deadline: Deadline | None = None
 ):
-    """:func:`refine` with the search's own link model (its caches are reused)."""
-    _check_options(rounds, split, min_step, first_step, max_sweeps)
+    """:func:`refine` with the search's own link model (its caches are reused), these
+    options (default ``RefineOptions()``), until ``deadline``.
+
+    Past the deadline no new work starts (no further link check, split, node update or
+    round); the chain so far is returned, every link of it checked, and
+    ``refinement.stopped`` says so. With time left the deadline changes nothing.
+    """
+    options = RefineOptions() if options is None else options
+    if not isinstance(options, RefineOptions):
+        raise ValueError(f"options must be RefineOptions, got {options!r}")
     if plan.refinement is not None:
         raise ValueError("plan is already refined")
     t0 = time.perf_counter()
-    r = _Refiner(links)
+    r = _Refiner(links, options, deadline)
     nodes = list(plan.nodes)
     kinds = list(plan.kinds)
-    for u in plan.unions:  # the search checked them: known free
-        r.known[(u.p0, u.p1)] = (u, r.cost(u))
     n0 = len(nodes)
     original = set(nodes)
-    nodes, kinds = r.shortcut(nodes, kinds)
-    for _ in range(int(rounds)):
-        nodes, kinds = r.split(nodes, kinds, split * links.L)
-        nodes = r.polish(nodes, first_step, min_step, int(max_sweeps))
-        kinds = [k if nodes[i] in original else "refined" for i, k in enumerate(kinds)]
+    if r.stop():  # past the deadline already: the search's chain as found
+        unions, cost = plan.unions, plan.cost
+    else:
+        for u in plan.unions:  # the search checked them: known free
+            r.known[(u.p0, u.p1)] = (u, r.cost(u))
         nodes, kinds = r.shortcut(nodes, kinds)
-    unions = tuple(r.known[(a, b)][0] for a, b in zip(nodes[:-1], nodes[1:], strict=True))
-    cost = 0.0
-    for u in unions:
-        cost += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=PLAN_RTOL))
+        for _ in range(options.rounds):
+            if r.stop():
+                break
+            nodes, kinds = r.split(nodes, kinds, options.split * links.L)
+            nodes = r.polish(nodes, options.first_step, options.min_step, options.max_sweeps)
+            kinds = [k if nodes[i] in original else "refined" for i, k in enumerate(kinds)]
+            nodes, kinds = r.shortcut(nodes, kinds)
+        unions = tuple(r.known[(a, b)][0] for a, b in zip(nodes[:-1], nodes[1:], strict=True))
+        cost = 0.0
+        for u in unions:
+            cost += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=PLAN_RTOL))
     if not cost < plan.cost:  # not shorter by [1]: keep the search's chain
         nodes, kinds, unions, cost = list(plan.nodes), list(plan.kinds), plan.unions, plan.cost
     seconds = time.perf_counter() - t0
@@ -208,6 +190,7 @@ def refine_with(
         updates=r.updates,
         checked=r.checked,
         seconds=seconds,
+        stopped=r.stopped,
     )
     return dataclasses.replace(
         plan,
@@ -223,12 +206,22 @@ def refine_with(
 class _Refiner:
     """The state of one refinement: checked links and counters."""
 
-    def __init__(self, links: LinkModel):
+    def __init__(self, links: LinkModel, options: RefineOptions, deadline: Deadline | None = None):
         self.links = links
         self.ws = links.ws
         self.L = links.L
+        self.options = options
+        self.moves_table = np.array(options.moves, dtype=float)
+        self.deadline = deadline
+        self.stopped = False  # the deadline passed: no new work
         self.known: dict = {}  # (p0, p1) -> (union, cost) of a checked free link, or (None, inf)
         self.removed = self.added = self.moves = self.updates = self.checked = 0
+
+    def stop(self) -> bool:
+        """True once the deadline has passed (then for good): start no new work."""
+        if not self.stopped and self.deadline is not None and self.deadline.expired():
+            self.stopped = True
+        return self.stopped
 
     # -- links ---------------------------------------------------------------------------
     def link(self, a: Pose, b: Pose) -> float:
@@ -277,7 +270,7 @@ class _Refiner:
     def shortcut(self, nodes: list, kinds: list) -> tuple[list, list]:
         """The cheapest chain over direct links between the nodes (order kept)."""
         n = len(nodes)
-        if n < 3:
+        if n < 3 or self.stop():
             return nodes, kinds
         P = np.array(nodes, dtype=float)
         I, J = np.triu_indices(n, k=2)
@@ -305,6 +298,8 @@ class _Refiner:
             if not todo:
                 break
             for i, j in todo:
+                if self.stop():  # the chain so far: every link of it checked
+                    return nodes, kinds
                 self.link(nodes[i], nodes[j])
         self.removed += n - len(chain)
         return [nodes[k] for k in chain], [kinds[k] for k in chain]
@@ -315,7 +310,7 @@ class _Refiner:
         out, out_kinds = [nodes[0]], [kinds[0]]
         for a, b, k in zip(nodes[:-1], nodes[1:], kinds[1:], strict=True):
             u = self.known[(a, b)][0]
-            if u.d > longest:
+            if u.d > longest and not self.stop():
                 x = 0.5 * u.x_end
                 px, py = u.to_world(x, u.f(x)).tolist()
                 m = Pose(px, py, wrap(float(u.heading(x))))
@@ -339,20 +334,24 @@ class _Refiner:
         L = self.L
         steps = [first_step * L] * len(nodes)
         floor = min_step * L
-        gain = MIN_GAIN * L
-        m = len(MOVES)
+        gain = self.options.min_gain * L
+        moves = self.moves_table
+        m = len(moves)
+        checks = self.options.checks_per_update
         for _ in range(max_sweeps):
             active = False
             for parity in (1, 2):
                 idx = [i for i in range(parity, len(nodes) - 1, 2) if steps[i] >= floor]
                 if not idx:
                     continue
+                if self.stop():
+                    return nodes
                 active = True
                 self.updates += len(idx)
                 P = np.array([nodes[i] for i in idx], dtype=float)
                 s = np.array([steps[i] for i in idx])[:, None]
                 c, sn = np.cos(P[:, 2:3]), np.sin(P[:, 2:3])
-                fwd, left, turn = MOVES[:, 0] * s, MOVES[:, 1] * s, MOVES[:, 2] * (s / L)
+                fwd, left, turn = moves[:, 0] * s, moves[:, 1] * s, moves[:, 2] * (s / L)
                 Q = np.stack(
                     (P[:, :1] + c * fwd - sn * left, P[:, 1:2] + sn * fwd + c * left, wrap(P[:, 2:3] + turn)),
                     axis=-1,
@@ -366,10 +365,12 @@ class _Refiner:
                 )
                 guess = (both[:k] + both[k:]).reshape(len(idx), m)
                 for row, i in enumerate(idx):
+                    if self.stop():
+                        return nodes
                     a, p, b = nodes[i - 1], nodes[i], nodes[i + 1]
                     now = self.link(a, p) + self.link(p, b)
                     moved = False
-                    for j in np.argsort(guess[row], kind="stable")[:CHECKS_PER_UPDATE]:
+                    for j in np.argsort(guess[row], kind="stable")[:checks]:
                         if not guess[row, j] < now - gain:
                             break
                         q = Pose(*Q[row, j].tolist())

@@ -1,0 +1,83 @@
+"""The default planner (beyond the paper): the paper's search, then the lattice, then the refinement.
+
+1. **The paper's search** (:func:`segplan.planning.stages.paper_search`), within a few
+   expansions and a share of the time (:class:`segplan.planning.options.DefaultOptions`:
+   ``paper``, ``paper_share``): fast where it succeeds.
+2. **The lattice** (:func:`segplan.planning.stages.lattice_stage`; its tight arcs at the
+   ends and its shortcuts run inside it): if the paper's search found a plan, a few
+   expansions more to look for a shorter one (``lattice_after_paper``), none if that plan is
+   already within ``near_lower_bound`` of a lower bound; otherwise up to
+   ``lattice.max_expansions`` and the rest of the time.
+3. **The refinement** (:func:`segplan.planning.refine.refine_with`) of the shorter plan
+   found, with the link model of the search that found it, until the call's deadline.
+
+Both searches share the context's one validity checker.
+"""
+
+from __future__ import annotations
+
+from .context import PlanningContext
+from .dubins import dubins_length_scalar
+from .options import DefaultOptions
+from .plan import NoPathError, Plan
+from .refine import refine_with
+from .stages import lattice_stage, paper_search
+
+__all__ = ["default_pipeline", "lattice_budget"]
+
+
+def lattice_budget(ctx: PlanningContext, options: DefaultOptions, paper: Plan | None) -> int:
+    """Expansions the lattice gets after the paper's search: ``options.lattice.max_expansions``
+    without a paper plan; with one, at most ``options.lattice_after_paper`` (a count, not a
+    time share, so the plan does not depend on the machine), and 0 if the plan costs at most
+    ``options.near_lower_bound`` times a lower bound of any plan's LONGD (the Dubins length
+    of the rear point, :func:`segplan.planning.dubins.dubins_length`)."""
+    expansions = options.lattice.max_expansions
+    if paper is None:
+        return expansions
+    expansions = min(expansions, options.lattice_after_paper)
+    s, g = ctx.scenario.start, ctx.scenario.goal
+    bound = dubins_length_scalar(s.x, s.y, s.theta, g.x, g.y, g.theta, ctx.scenario.robot.min_turning_radius)
+    if paper.cost <= options.near_lower_bound * bound:
+        return 0
+    return expansions
+
+
+def default_pipeline(ctx: PlanningContext, options: DefaultOptions) -> Plan:
+    """The default planner's plan on the context's floor (module docstring); raises
+    :class:`segplan.NoPathError` when neither search finds one (the lattice's failure, its
+    time-out naming the call's ``time_limit``)."""
+    # 1. the paper's search
+    paper = paper_links = None
+    try:
+        paper, paper_links = paper_search(ctx, options.paper)
+    except NoPathError:
+        pass
+    # 2. the lattice
+    found, links = paper, paper_links
+    expansions = lattice_budget(ctx, options, paper)
+    if expansions > 0:
+        try:
+            found, links = lattice_stage(ctx, options.lattice, expansions)
+        except NoPathError as exc:
+            if paper is None:
+                raise _named_limits(exc, ctx, options) from None
+    if paper is not None and paper.cost < found.cost:
+        found, links = paper, paper_links
+    # 3. the refinement
+    if options.refine is None:
+        return found
+    return refine_with(found, links, options.refine, deadline=ctx.deadline)
+
+
+def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOptions) -> NoPathError:
+    """The lattice's failure; a time-out names the call's ``time_limit``, not the share the
+    lattice had left."""
+    if exc.reason != "time":
+        return exc
+    s, g = ctx.scenario.start, ctx.scenario.goal
+    message = (
+        f"no path from {tuple(s)} to {tuple(g)}: the time limit time_limit={options.time_limit:g} s "
+        f"was reached (the paper's search, then the lattice); expanded {exc.expanded} states"
+    )
+    return NoPathError(message, "time", exc.expanded, exc.generated, exc.seconds, exc.best)
