@@ -24,16 +24,9 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "segplan"
 ROLE = re.compile(r":(?:py:)?(func|class|mod|data|meth|attr|exc|obj|const):`([^`]+)`")
 
-#: References in files outside this change's reach (segplan/planning/**, segplan/cli.py,
-#: segplan/__init__.py) that do not resolve yet: ``(file, reference)``, to fix at the merge of
-#: issue 24's branches. Every other reference must resolve; an entry that resolves fails too.
-#: Here the lattice search's mixins name their host's methods (``_LatticeSearch.union`` and
-#: ``.certified`` in segplan/planning/lattice/search.py) as if they were their own.
-KNOWN_BAD: set[tuple[str, str]] = {
-    ("segplan/planning/lattice/approach.py", "certified"),
-    ("segplan/planning/lattice/edges.py", "certified"),
-    ("segplan/planning/lattice/edges.py", "union"),
-}
+#: References known not to resolve, ``(file, reference)``: none (the last three, in the lattice's
+#: former mixins, went with them in issue 24). An entry that resolves fails too.
+KNOWN_BAD: set[tuple[str, str]] = set()
 
 
 def _has(obj, name: str) -> bool:

@@ -15,9 +15,10 @@ import math
 
 import numpy as np
 
+from ..model.pose import TWO_PI
+
 __all__ = ["dubins_length", "dubins_length_scalar"]
 
-TWO_PI = 2.0 * math.pi
 #: Rounding allowance (radians, and squared units of ``R`` for a straight part): an arc angle
 #: within ``ZERO`` below a full turn is a zero arc that rounding pushed below 0 and the
 #: wrap then sent to ``2 pi``; a squared straight length within ``ZERO`` below 0 is a zero

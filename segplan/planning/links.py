@@ -28,7 +28,7 @@ from ..model.cost import longd_intrinsic_scalar
 from ..model.frame import heuristic_alpha, optimal_alpha_intrinsic
 from ..model.pose import Pose, intrinsic_interval, wrap_fmod
 from ..model.romberg import RombergError
-from ..model.union import Union, cubic_coefficients
+from ..model.union import Union, cubic_coefficients, curvature_samples, peak_curvature
 from .validity import Workspace
 
 __all__ = [
@@ -190,10 +190,8 @@ class LinkModel:
         """
         alphas = lo + (hi - lo) * (np.arange(1, STEER_SAMPLES + 1) / (STEER_SAMPLES + 1))
         X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alphas)
-        x = X[:, None] * _TAU
-        fp = c1[:, None] + (2.0 * c2[:, None] + 3.0 * c3[:, None] * x) * x
-        fpp = 2.0 * c2[:, None] + 6.0 * c3[:, None] * x
-        peak = np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=1)
+        _, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], _TAU)
+        peak = peak_curvature(fp, fpp, axis=1)
         k = int(np.argmin(peak))
         if not peak[k] < self.ws.max_curvature:
             return None

@@ -14,7 +14,7 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from ..model.cost import longd_exact_intrinsic
+from ..model.cost import chain_longd
 
 __all__ = [
     "PLAN_RTOL",
@@ -36,12 +36,12 @@ PLAN_RTOL = 1e-8
 def union_longd(u) -> float:
     """LONGD of one union by formula [1] (Romberg to :data:`PLAN_RTOL`), from the union's
     own intrinsic parameters (``u.d``, ``u.phi0``, ``u.phi1``, ``u.alpha``, ``u.L``)."""
-    return float(longd_exact_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L, rtol=PLAN_RTOL))
+    return chain_longd((u,), PLAN_RTOL)
 
 
 def unions_longd(unions: Iterable) -> float:
     """A chain's LONGD: the sum of :func:`union_longd` over ``unions`` (0 for none)."""
-    return sum(union_longd(u) for u in unions)
+    return chain_longd(unions, PLAN_RTOL)
 
 
 def check_option(

@@ -44,10 +44,10 @@ import time
 import numpy as np
 
 from ..floor.scenario import Scenario
-from ..model.cost import checked_intrinsic, longd_exact_intrinsic, longd_gauss_intrinsic
+from ..model.cost import chain_longd, longd_gauss_intrinsic
 from ..model.frame import heuristic_alpha
 from ..model.pose import Pose, alpha_interval, wrap
-from ..model.union import cubic_coefficients
+from ..model.union import cubic_coefficients, curvature_samples, exceeds_curvature
 from .context import Deadline, workspace_of
 from .links import ALPHA_MARGIN, LinkModel
 from .options import RefineOptions
@@ -173,9 +173,7 @@ def refine_with(
             kinds = [k if nodes[i] in original else "refined" for i, k in enumerate(kinds)]
             nodes, kinds = r.shortcut(nodes, kinds)
         unions = tuple(r.known[(a, b)][0] for a, b in zip(nodes[:-1], nodes[1:], strict=True))
-        cost = 0.0
-        for u in unions:
-            cost += float(longd_exact_intrinsic(*checked_intrinsic(u.p0, u.p1, u.alpha, u.L), rtol=PLAN_RTOL))
+        cost = chain_longd(unions, PLAN_RTOL, from_poses=True)
     if not cost < plan.cost:  # not shorter by [1]: keep the search's chain
         nodes, kinds, unions, cost = list(plan.nodes), list(plan.kinds), plan.unions, plan.cost
     seconds = time.perf_counter() - t0
@@ -405,10 +403,8 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     X, c1, c2, c3 : ndarray (n,)
         The cubics (:func:`segplan.model.union.cubic_coefficients`).
     """
-    x = X[:, None] * SAMPLES
-    fp = c1[:, None] + (2.0 * c2[:, None] + 3.0 * c3[:, None] * x) * x  # f'
-    fpp = 2.0 * c2[:, None] + 6.0 * c3[:, None] * x  # f''
-    bad = np.any(np.abs(fpp) > ws.max_curvature * (1.0 + fp * fp) ** 1.5, axis=1)
+    x, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], SAMPLES)
+    bad = exceeds_curvature(fp, fpp, ws.max_curvature, axis=1)
     fx = ((c3[:, None] * x + c2[:, None]) * x + c1[:, None]) * x  # f
     h = frame[:, None] + np.arctan(fp)  # heading
     cf, sf = np.cos(frame)[:, None], np.sin(frame)[:, None]

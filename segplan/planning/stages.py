@@ -22,8 +22,7 @@ import time
 import weakref
 
 from ..floor.scenario import Scenario
-from ..model.cost import checked_intrinsic, longd_exact_intrinsic
-from ..model.frame import heuristic_coefficients
+from ..model.cost import chain_longd
 from .context import PlanningContext
 from .lattice.search import lattice_search
 from .links import LinkModel
@@ -52,15 +51,13 @@ def _scenario_ds(scenario: Scenario) -> float:
 
 def paper_offline(scenario: Scenario, options: PaperOptions) -> float:
     """The paper's off-line work, outside the planning time: ``d_s / L`` for heuristic (c)
-    (0 otherwise), and the fitted coefficients of the heuristic reference system and of
-    formula [2] (each computed once per process). Returns ``d_s / L``."""
+    (0 otherwise). (The fitted coefficients of the heuristic reference system are computed
+    once, when :mod:`segplan.model.frame` is imported.) Returns ``d_s / L``."""
     if options.heuristic == "c":
         ds = float(_scenario_ds(scenario)) if options.ds is None else options.ds
         ds_over_L = ds / scenario.robot.L
     else:
         ds_over_L = 0.0
-    if options.alpha_method == "heuristic":
-        heuristic_coefficients()
     return ds_over_L
 
 
@@ -93,10 +90,7 @@ def paper_search(ctx: PlanningContext, options: PaperOptions, observer=None) -> 
 
     def finish(nodes, unions, kinds, search_cost, expanded, generated):
         # LONGD [1] of each union (Romberg, rtol 1e-8)
-        exact = 0.0
-        for u in unions:
-            geo = checked_intrinsic(u.p0, u.p1, u.alpha, u.L)
-            exact += float(longd_exact_intrinsic(*geo, rtol=PLAN_RTOL))
+        exact = chain_longd(unions, PLAN_RTOL, from_poses=True)
         st = ex.stats
         return Plan(
             nodes=nodes,

@@ -35,7 +35,7 @@ from ..floor.geometry import (
     touch_tolerance,
 )
 from ..floor.sweep import Sweep
-from ..model.union import Union
+from ..model.union import Union, curvature_samples, exceeds_curvature
 
 __all__ = ["HIT_SAMPLES", "ExpansionStats", "Workspace"]
 
@@ -246,10 +246,9 @@ class Workspace:
             return True
         # a sampled curvature above the limit is a certain failure
         c1 = u.coefficients[1]
-        x = X * _CURV_S
-        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
-        fpp = np.abs(2.0 * c2 + 6.0 * c3 * x)
-        if np.any(fpp > self.max_curvature * (1.0 + fp * fp) ** 1.5):
+        x, fp, fpp = curvature_samples(X, c1, c2, c3, _CURV_S)
+        fpp = np.abs(fpp)
+        if exceeds_curvature(fp, fpp, self.max_curvature):
             return False
         # a certain pass: on each piece between samples |kappa| <= max|f''| / (1 + min f'^2)^1.5
         # (f'' is linear, f' a parabola: its least |f'| is at an end, at its vertex or 0)

@@ -29,8 +29,8 @@ import math
 
 import numpy as np
 
-from ...model.pose import Pose
-from ...model.union import Union, cubic_coefficients
+from ...model.pose import Pose, wrap_floor
+from ...model.union import Union, cubic_coefficients, curvature_samples, peak_curvature
 from ..dubins import dubins_length
 from .clearance import union_free_near, union_free_screened
 from .edges import LazyEdges
@@ -60,8 +60,8 @@ def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float) -> np.ndar
     dx, dy = p1[:, 0] - p0[0], p1[:, 1] - p0[1]
     d = np.hypot(dx, dy)
     psi = np.arctan2(dy, dx)
-    phi0 = np.remainder(p0[2] - psi + math.pi, 2.0 * math.pi) - math.pi
-    phi1 = np.remainder(p1[:, 2] - psi + math.pi, 2.0 * math.pi) - math.pi
+    phi0 = wrap_floor(p0[2] - psi)
+    phi1 = wrap_floor(p1[:, 2] - psi)
     lo = -0.5 * math.pi - np.minimum(np.minimum(phi0, phi1), 0.0)
     hi = 0.5 * math.pi - np.maximum(np.maximum(phi0, phi1), 0.0)
     ok = (hi > lo) & (d > 1e-9)
@@ -70,10 +70,8 @@ def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float) -> np.ndar
     d, phi0, phi1, lo, hi = (v[ok, None, None] for v in (d, phi0, phi1, lo, hi))
     alphas = lo + (hi - lo) * _FRAMES
     X, c1, c2, c3 = cubic_coefficients(d, phi0, phi1, alphas)
-    x = X * _TAU
-    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
-    fpp = 2.0 * c2 + 6.0 * c3 * x
-    peak = np.max(np.abs(fpp) / (1.0 + fp * fp) ** 1.5, axis=2).min(axis=1)
+    _, fp, fpp = curvature_samples(X, c1, c2, c3, _TAU)
+    peak = peak_curvature(fp, fpp, axis=2).min(axis=1)
     ok[ok] = peak < slack * max_curvature
     return ok
 

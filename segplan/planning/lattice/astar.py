@@ -43,7 +43,7 @@ import time
 
 import numpy as np
 
-from ...model.pose import Pose
+from ...model.pose import Pose, wrap_ieee
 from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..plan import Plan, lattice_plan, union_longd
@@ -129,7 +129,7 @@ class LatticeAStar:
         self.goal_l = (
             gx,
             gy,
-            math.remainder(self.goal.theta - self.start.theta, 2 * math.pi),
+            wrap_ieee(self.goal.theta - self.start.theta),
         )  # lattice frame
         self.fine = ps.fine_points()  # finer points for primitives close to obstacles
         _, cells, self.delta, self.step, self.cost = ps.heading_tables(grid.cell)

@@ -24,7 +24,7 @@ import math
 import time
 from dataclasses import dataclass, replace
 
-from ...model.pose import Pose, arc_end, intrinsic_interval
+from ...model.pose import Pose, arc_end, intrinsic_interval, wrap_ieee
 from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
@@ -74,7 +74,7 @@ class Arc:
 def _circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
     """:func:`segplan.model.pose.arc_end` of ``p`` as a Pose, its heading in ``[-pi, pi]``."""
     x, y, th = arc_end(p.x, p.y, p.theta, rho, side, turn)
-    return Pose(x, y, math.remainder(th, 2 * math.pi))
+    return Pose(x, y, wrap_ieee(th))
 
 
 def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:

@@ -34,6 +34,7 @@ import math
 
 import numpy as np
 
+from ...model.pose import wrap_floor
 from .frame import NH, heading_angles
 from .primitives import primitive_set
 
@@ -153,7 +154,7 @@ class HeadingField:
         near_y = np.abs(Y - gy) <= rad
         si, sj, sh = np.meshgrid(np.nonzero(near_x)[0], np.nonzero(near_y)[0], np.arange(NH), indexing="ij")
         si, sj, sh = si.ravel(), sj.ravel(), sh.ravel()
-        dh = np.abs(np.remainder(_ANGLES[sh] - gth + math.pi, 2 * math.pi) - math.pi)
+        dh = np.abs(wrap_floor(_ANGLES[sh] - gth))
         # the goal ahead of the seed (within a cone), as a final union needs it
         ex, ey = gx - X[si], gy - Y[sj]
         ahead = ex * np.cos(_ANGLES[sh]) + ey * np.sin(_ANGLES[sh])

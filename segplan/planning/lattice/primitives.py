@@ -60,7 +60,7 @@ import numpy as np
 from ...model.cost import longd_exact_intrinsic, longd_gauss_intrinsic
 from ...model.frame import heuristic_alpha
 from ...model.pose import alpha_interval, wrap
-from ...model.union import Union, cubic_coefficients
+from ...model.union import Union, cubic_coefficients, curvature_samples, peak_curvature
 from .frame import HEADING_VECTORS, NH, LatticeFrame, heading_angles
 
 __all__ = [
@@ -311,9 +311,8 @@ def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
         sl = slice(k, k + _PEAK_BLOCK)
         coef = cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
         X, c1, c2, c3 = (np.asarray(v, dtype=float)[..., None] for v in coef)
-        x = X * _PEAK_S
-        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x
-        out[sl] = np.max(np.abs(2.0 * c2 + 6.0 * c3 * x) / (1.0 + fp * fp) ** 1.5, axis=-1)
+        _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S)
+        out[sl] = peak_curvature(fp, fpp)
     return out
 
 

@@ -42,7 +42,6 @@ from dataclasses import replace
 import numpy as np
 
 from ...floor.scenario import Scenario
-from ...model.frame import heuristic_coefficients
 from ...model.pose import Pose
 from ..links import LinkModel
 from ..plan import NoPathError, Plan, check_limits, check_option, direct_plan, lattice_plan
@@ -231,7 +230,6 @@ def _lattice_search(
     # per robot and resolution; those of the retry when it comes), the fitted coefficients of
     # the heuristic frame and of [2]
     primitive_set(L, robot.max_steer, tries[0])
-    heuristic_coefficients()
     t0 = time.perf_counter() if t0 is None else t0
     deadline = t0 + time_limit
     ws = workspace or Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
@@ -338,11 +336,13 @@ def _escape(
     t0: float,
     schedule=SCHEDULE,
 ) -> Plan:
-    """Search again between the inner poses of tight arcs (:func:`segplan.planning.lattice.escape.arc_pairs`
-    of ``exc.escapable``), the cheapest pairs first, at most :attr:`Schedule.max_escapes`, at the
-    first resolution only, while the limits of the whole call allow (``max_expansions``, counted
-    from ``exc.expanded``; ``deadline``). Returns the arcs around the first plan found; re-raises
-    ``exc`` (with the expansions and the time of every try added) if none."""
+    """Search again between the inner poses of tight arcs
+    (:func:`segplan.planning.lattice.escape.arc_pairs` of ``exc.escapable``), the cheapest
+    pairs first, at most
+    :attr:`~segplan.planning.lattice.schedule.Schedule.max_escapes` of them, at the first
+    resolution only, while the limits of the whole call allow (``max_expansions``, counted
+    from ``exc.expanded``; ``deadline``). Returns the arcs around the first plan found;
+    re-raises ``exc`` (with the expansions and the time of every try added) if none."""
     pairs = arc_pairs(scenario, workspace, exc.escapable)[: schedule.max_escapes]
     used = exc.expanded
     for _, a, b in pairs:

@@ -38,7 +38,7 @@ import math
 import numpy as np
 
 from ...floor.geometry import polygons_overlap
-from ...model.pose import Pose
+from ...model.pose import Pose, wrap_ieee
 from ...model.union import Union
 from ..links import LinkModel
 
@@ -111,8 +111,8 @@ class Problem:
         if u is not None and self.links.ws.curvature_ok(u):
             return self.links.link_cost(u)
         psi = math.atan2(self.goal.y - pose.y, self.goal.x - pose.x) if d > 0 else pose.theta
-        phi0 = abs(math.remainder(pose.theta - psi, 2 * math.pi))
-        phi1 = abs(math.remainder(self.goal.theta - psi, 2 * math.pi))
+        phi0 = abs(wrap_ieee(pose.theta - psi))
+        phi1 = abs(wrap_ieee(self.goal.theta - psi))
         return d + self.R * (phi0 + phi1)
 
     def prepare(self, poses) -> None:
