@@ -6,7 +6,14 @@ dubins_length's): run it before the change with ``--out before.json``, after it 
 front-wheel length and its nodes, every float by ``float.hex`` (exact, not rounded); a
 failure as its reason. The floors: chapter 9's 400 random floors (200 of each kind), its
 hard cases, and the robots probe's 80 floors (``benchmarks/robots.py``): 490 in all, about
-two minutes of CPU.
+two to three minutes of CPU.
+
+Every plan is asked for with a time limit of :data:`TIME_LIMIT` (120 s) instead of the
+planner's default 10 s, so that the record does not depend on the machine's speed or load:
+measured on this project's machine (AMD EPYC, 2 cores, 2026-12-03), two floors are close to
+10 s (any-61 plans in 10.2-11.3 s, a time-out under load; robot-58 plans in 34 s, a time-out
+at 10 s), every other one finishes in under 10 s. A record also stores the limit it used;
+records made with different limits are not compared.
 
     python benchmarks/same_plans.py --out /tmp/before.json
     python benchmarks/same_plans.py --compare /tmp/before.json /tmp/after.json
@@ -24,6 +31,9 @@ import segplan
 from segplan.studies.floors import hard_cases, random_floors
 
 HERE = Path(__file__).resolve().parent
+#: Seconds per plan (module docstring): far above the slowest floor's 34 s, so that no
+#: outcome depends on the processor's speed or load.
+TIME_LIMIT = 120.0
 
 
 def floors() -> list[tuple[str, segplan.Scenario]]:
@@ -37,12 +47,13 @@ def floors() -> list[tuple[str, segplan.Scenario]]:
     return out
 
 
-def record() -> dict[str, list]:
-    """Each floor's plan (``["plan", cost hex, nodes as hex]``) or failure (``["fail", reason]``)."""
-    out: dict[str, list] = {}
+def record(time_limit: float = TIME_LIMIT) -> dict[str, list]:
+    """Each floor's plan (``["plan", cost hex, nodes as hex]``) or failure (``["fail", reason]``),
+    and the time limit under the key ``"time_limit"``."""
+    out: dict[str, list] = {"time_limit": [time_limit]}
     for name, sc in floors():
         try:
-            p = segplan.plan_scenario(sc)
+            p = segplan.plan_scenario(sc, time_limit=time_limit)
         except segplan.NoPathError as err:
             out[name] = ["fail", err.reason]
         else:
@@ -71,17 +82,25 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--compare", nargs=2, type=Path, metavar=("BEFORE", "AFTER"), help="compare two records"
     )
+    parser.add_argument(
+        "--time-limit", type=float, default=TIME_LIMIT, help="seconds per plan (default %(default)s)"
+    )
     args = parser.parse_args(argv)
     if args.compare:
         before, after = (json.loads(p.read_text()) for p in args.compare)
+        limits = before.get("time_limit"), after.get("time_limit")
+        if limits[0] != limits[1]:
+            print(f"records made with different time limits ({limits[0]}, {limits[1]}): not compared")
+            return 2
         lines = compare(before, after)
-        print("\n".join(lines) or f"the same {len(before)} plans and failures, bit for bit")
+        print("\n".join(lines) or f"the same {len(before) - 1} plans and failures, bit for bit")
         return 1 if lines else 0
     if not args.out:
         parser.error("give --out FILE or --compare BEFORE AFTER")
-    data = record()
+    data = record(args.time_limit)
     args.out.write_text(json.dumps(data) + "\n")
-    print(f"{len(data)} floors: {sum(v[0] == 'plan' for v in data.values())} plans; wrote {args.out}")
+    plans = sum(v[0] == "plan" for v in data.values())
+    print(f"{len(data) - 1} floors: {plans} plans (time limit {args.time_limit:g} s); wrote {args.out}")
     return 0
 
 

@@ -3,16 +3,38 @@
 The stable API is ``segplan.__all__``: these names keep their signatures across
 releases. The modules' own exported names (each module's ``__all__``) are the library's
 parts, for studies and extensions; they may move between releases. Names with a leading
-underscore are private. The modules are layered, every dependency pointing down (the
-README's diagram; enforced by the import-linter contract in ``pyproject.toml``)::
+underscore are private.
 
-    apps      cli, animate, studies/, fit/ (above plot)
-    api       api (plan, plan_scenario), refine
-    search    search (A*), expansion (the paper's intermediate nodes), lattice, approach
-    problem   problem, links, validity, path, metrics, primitives, clearance
-    world     world, floors, collision, sweep
-    numerics  frame (above frame_exact), cost, geometry, decompose (non-convex polygons)
-    base      union, constants (the stored fits), romberg, pose, derivation, dubins
+The API by concept (the book's chapter "API reference" groups it by the paper's sections):
+
+* model, the paper's mathematics: ``Pose``, ``Union``, ``longd``, ``longd_exact``,
+  ``longd_approx``, ``optimal_alpha``, ``optimal_alpha_intrinsic``;
+* floor, the robot's world: ``Robot``, ``Scenario``, ``make_scenario``, ``load_scenario``,
+  ``save_scenario``, ``shipped_scenarios``, ``random_world``, ``ConvexPolygon``,
+  ``convex_pieces``, ``collides``, ``union_free``, ``union_in_bounds``, ``pose_collides``,
+  ``pose_in_bounds``, ``CollisionStats``, ``ScenarioError``;
+* planning: ``plan``, ``plan_scenario``, ``Plan``, ``NoPathError``, ``refine``,
+  ``Refinement``, and the options objects ``PaperOptions``, ``DefaultOptions``,
+  ``LatticeOptions``, ``RefineOptions`` (every tuning value of a planner, with its provenance);
+* measure: ``measure_path``, ``measure_scenario_path``, ``plan_poses``, ``PathMetrics``.
+
+The house, every dependency pointing down (enforced by the import-linter contracts in
+``pyproject.toml``, checked by ``tests/test_layers.py``)::
+
+    cli | studies/                 the command line, the book's studies
+    fit/                           the fits behind model/constants.json
+    planning/ | viz/               the planners; plots, animations, path measures
+    floor/                         geometry, decompose, sweep, collision, scenario, random_floors
+    model/                         pose, union, romberg, cost, frame, frame_exact, derivation, constants
+
+    planning/:  api > default > refine | stages > paper/ | lattice/ > context
+                > links | options > schedule > validity | plan | dubins
+    paper/ (the paper's search):  search > problem | expansion > bisectrix
+    lattice/ (beyond the paper):  search > escape | shortcut > astar > approach | guide
+                                  > edges | clearance | primitives > frame
+
+``planning.paper`` and ``planning.lattice`` never import each other: the paper's search
+stays exactly as reproduced whatever the default planner becomes.
 """
 
 from .floor.collision import CollisionStats, collides, union_free, union_in_bounds
@@ -33,6 +55,7 @@ from .model.frame import optimal_alpha, optimal_alpha_intrinsic
 from .model.pose import Pose
 from .model.union import Union
 from .planning.api import plan, plan_scenario
+from .planning.options import DefaultOptions, LatticeOptions, PaperOptions, RefineOptions
 from .planning.plan import NoPathError, Plan, Refinement
 from .planning.refine import refine
 from .viz.metrics import PathMetrics, measure_path, measure_scenario_path, plan_poses
@@ -50,3 +73,4 @@ __all__ += ["longd", "longd_approx"]
 __all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses"]
 __all__ += ["optimal_alpha", "optimal_alpha_intrinsic"]
 __all__ += ["Refinement", "refine"]
+__all__ += ["DefaultOptions", "LatticeOptions", "PaperOptions", "RefineOptions"]

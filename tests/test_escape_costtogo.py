@@ -42,10 +42,10 @@ from segplan.planning.lattice.escape import (
 from segplan.planning.lattice.frame import heading_angles
 from segplan.planning.lattice.guide import FINER_CELLS, Guide, HeadingField, turns_tighter
 from segplan.planning.lattice.primitives import max_reach
-from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.lattice.search import lattice_search, plan_lattice
 from segplan.planning.links import LinkModel
 from segplan.planning.plan import union_longd, unions_longd
+from segplan.planning.schedule import SCHEDULE
 from segplan.planning.validity import Workspace
 from segplan.studies import floors
 

@@ -7,9 +7,9 @@ import time
 from test_lattice_parts import astar_of, plan_of
 
 from segplan.planning.lattice.escape import improve_with_arcs
-from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.lattice.search import lattice_search
 from segplan.planning.lattice.shortcut import shortcut_plan
+from segplan.planning.schedule import SCHEDULE
 from segplan.planning.validity import Workspace
 from segplan.studies import floors
 

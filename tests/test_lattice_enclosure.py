@@ -10,8 +10,8 @@ from test_lattice_parts import astar_of, plan_of
 from segplan import NoPathError, Robot, make_scenario, plan_scenario
 from segplan.planning.lattice import search as lt
 from segplan.planning.lattice.approach import steerable
-from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.plan import check_limits, check_option
+from segplan.planning.schedule import SCHEDULE
 
 DEG = math.pi / 180.0
 

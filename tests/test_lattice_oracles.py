@@ -24,7 +24,7 @@ Each check stands outside the search it judges:
 
 The coarse guide (:class:`segplan.planning.lattice.guide.Guide`) is an estimate, not a bound,
 and the goal's approach tree adds edges this recorder does not rebuild: the optimality
-oracles turn both off (a schedule of the test, :class:`segplan.planning.lattice.schedule.Schedule`).
+oracles turn both off (a schedule of the test, :class:`segplan.planning.schedule.Schedule`).
 The mutation tests at the end show that the oracles fail when the search is broken (h' times
 1.5, duplicate detection broken, a Dubins word missing, the repair taking the first passing
 edge).
@@ -54,8 +54,8 @@ from segplan.planning.lattice.astar import LatticeAStar
 from segplan.planning.lattice.edges import LazyEdges
 from segplan.planning.lattice.frame import LatticeFrame
 from segplan.planning.lattice.primitives import primitive_set
-from segplan.planning.lattice.schedule import SCHEDULE
 from segplan.planning.plan import union_longd
+from segplan.planning.schedule import SCHEDULE
 from segplan.studies.floors import random_floor
 
 GOAL = ("goal",)

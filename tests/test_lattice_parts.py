@@ -18,9 +18,9 @@ from segplan.planning.lattice.astar import LatticeAStar
 from segplan.planning.lattice.edges import LazyEdges
 from segplan.planning.lattice.frame import NH, LatticeFrame, heading_angles
 from segplan.planning.lattice.primitives import primitive_set
-from segplan.planning.lattice.schedule import SCHEDULE, Schedule
 from segplan.planning.lattice.search import GOAL_RADIUS, lattice_floor, lattice_resolutions
 from segplan.planning.links import LinkModel
+from segplan.planning.schedule import SCHEDULE, Schedule
 from segplan.planning.validity import Workspace
 
 DEG = math.pi / 180.0

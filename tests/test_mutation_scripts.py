@@ -86,3 +86,14 @@ def test_same_plans_compare_reports_every_difference():
     # nodes alone differing is a difference too
     moved = {**before, "a": ["plan", before["a"][1], [[(1.0).hex()] * 3]]}
     assert same_plans.compare(before, moved) == ["a: 2.000000 m -> 2.000000 m (+0.000%)"]
+
+
+def test_same_plans_refuses_records_of_different_time_limits(tmp_path, capsys):
+    same_plans = load_file(ROOT / "benchmarks" / "same_plans.py", "same_plans")
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    a.write_text(json.dumps({"time_limit": [120.0], "x": ["fail", "time"]}))
+    b.write_text(json.dumps({"time_limit": [10.0], "x": ["fail", "time"]}))
+    assert same_plans.main(["--compare", str(a), str(b)]) == 2
+    assert "different time limits" in capsys.readouterr().out
+    assert same_plans.main(["--compare", str(a), str(a)]) == 0
+    assert "the same 1 plans" in capsys.readouterr().out

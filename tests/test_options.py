@@ -203,10 +203,54 @@ def test_a_plan_records_its_planner_and_options():
     d = default.to_dict()
     assert d["planner"] == "lattice" and d["options"]["paper"]["max_expansions"] == 40
     assert d["options"]["refine"]["max_sweeps"] == 3 and d["options"]["lattice"]["weight"] == 2.0
-    # the recorded options plan the same plan again
-    again = api._run(sc, default.options)
-    assert again.nodes == default.nodes and again.cost == default.cost
+    # the recorded options plan the same plan again, through the public door
+    for made in (default, paper):
+        again = segplan.plan_scenario(sc, options=made.options)
+        assert again.nodes == made.nodes and again.cost == made.cost and again.planner == made.planner
     # a plan made without them (a stage alone, or by hand) keeps the old constructor
     bare = dataclasses.replace(default, planner=None, options=None)
     assert bare.to_dict()["planner"] is None and bare.to_dict()["options"] is None
     assert bare == dataclasses.replace(default, planner=None)  # options do not take part in ==
+
+
+def test_options_object_or_keywords_not_both():
+    sc = segplan.load_scenario("single_obstacle")
+    with pytest.raises(ValueError, match="either options or heuristic, time_limit"):
+        segplan.plan_scenario(sc, "b", time_limit=3.0, options=DefaultOptions())
+    with pytest.raises(ValueError, match="options must be a segplan.PaperOptions"):
+        segplan.plan_scenario(sc, options={"heuristic": "b"})
+    # a clearance in the options is applied to the scenario as the keyword would be
+    kw = segplan.plan_scenario(sc, planner="paper", clearance=0.05)
+    ob = segplan.plan_scenario(sc, options=PaperOptions(clearance=0.05))
+    assert ob.nodes == kw.nodes and ob.cost == kw.cost
+    # the lattice's own check (resolution <= L) holds for an options object too
+    with pytest.raises(ValueError, match="resolution"):
+        segplan.plan_scenario(sc, options=DefaultOptions(lattice=LatticeOptions(resolution=100.0)))
+
+
+def test_the_lattices_schedule_is_an_option_that_reaches_the_lattice():
+    """DefaultOptions lists the lattice's schedule (every count of when a mechanism starts);
+    one set there reaches the search: without the guide, any-6 is not solved within 1000
+    expansions (tests/test_escape_costtogo.py shows the guide is what solves it)."""
+    from segplan.planning.schedule import SCHEDULE, Schedule
+    from segplan.studies import floors
+
+    assert DefaultOptions().lattice.schedule == SCHEDULE == Schedule()
+    assert DefaultOptions().to_dict()["lattice"]["schedule"]["guide_after"] == SCHEDULE.guide_after
+    sc = floors.random_floor("any", 6)
+    lattice = {"retry": False, "escapes": False}
+    unguided = DefaultOptions(
+        paper=PaperOptions(max_expansions=1),
+        lattice=LatticeOptions(
+            **lattice, max_expansions=1000, schedule=dataclasses.replace(SCHEDULE, guide_after=10**9)
+        ),
+        time_limit=60.0,
+    )
+    guided = dataclasses.replace(unguided, lattice=dataclasses.replace(unguided.lattice, schedule=SCHEDULE))
+    found = segplan.plan_scenario(sc, options=guided)
+    assert found.options.lattice.schedule == SCHEDULE and found.version == "lattice"
+    with pytest.raises(segplan.NoPathError) as err:
+        segplan.plan_scenario(sc, options=unguided)
+    assert err.value.reason == "expansions"
+    with pytest.raises(ValueError, match="schedule"):
+        LatticeOptions(schedule={"guide_after": 5})

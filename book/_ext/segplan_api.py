@@ -80,6 +80,13 @@ GROUPS: list[tuple[str, str, list[str]]] = [
         ["refine", "Refinement"],
     ),
     (
+        "Beyond the paper: the planners' options",
+        "Every option and tuning value of a planner as one checked, frozen object, each field "
+        "with the measurement (or the commit) that set its default; a plan records the one "
+        "that made it (Plan.options), and plan_scenario(options=...) plans with it again.",
+        ["PaperOptions", "DefaultOptions", "LatticeOptions", "RefineOptions"],
+    ),
+    (
         "Beyond the paper: measuring any planner's path",
         "One yardstick for segplan's plans and other planners' paths (front and rear length, "
         "curvature, clearance, a dense collision check).",

@@ -24,6 +24,7 @@ compare fairly.
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
 import types
 
@@ -125,6 +126,7 @@ def plan_scenario(
     max_turn_chain: int = 4,
     expander: dict | None = None,
     lattice: dict | None = None,
+    options: PaperOptions | DefaultOptions | None = None,
 ) -> Plan:
     """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
 
@@ -186,6 +188,12 @@ def plan_scenario(
     lattice : dict, optional
         Further keyword arguments of :func:`segplan.planning.lattice.search.lattice_search`
         (``resolution``, ``weight``, ``retry``, ...).
+    options : PaperOptions or DefaultOptions, optional
+        Every option as one checked object instead of the keyword arguments above (which
+        must then keep their defaults; ValueError naming any that does not): a
+        :class:`segplan.PaperOptions` runs the paper's search, a
+        :class:`segplan.DefaultOptions` the default planner. ``plan_scenario(scenario,
+        options=p.options)`` plans again as plan ``p`` was planned.
 
     Returns
     -------
@@ -215,6 +223,7 @@ def plan_scenario(
         max_turn_chain=max_turn_chain,
         expander=expander,
         lattice=lattice,
+        options=options,
     )
     return _run(scenario, options)
 
@@ -235,12 +244,40 @@ def planner_options(
     max_turn_chain: int = 4,
     expander: dict | None = None,
     lattice: dict | None = None,
+    options: PaperOptions | DefaultOptions | None = None,
 ) -> tuple[Scenario, PaperOptions | DefaultOptions]:
     """The door of :func:`plan_scenario`: its arguments checked once (ValueError naming a
     bad one), as the scenario to plan on (with ``clearance`` applied) and the options object
-    of the planner (:class:`PaperOptions` or :class:`DefaultOptions`)."""
+    of the planner (:class:`PaperOptions` or :class:`DefaultOptions`; ``options`` itself
+    where given, the other arguments then at their defaults)."""
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    if options is not None:
+        if not isinstance(options, PaperOptions | DefaultOptions):
+            raise ValueError(
+                "options must be a segplan.PaperOptions or segplan.DefaultOptions, "
+                f"got {type(options).__name__}"
+            )
+        given = dict(
+            heuristic=heuristic,
+            planner=planner,
+            refine=refine,
+            clearance=clearance,
+            cost=cost,
+            version=version,
+            ds=ds,
+            alpha_method=alpha_method,
+            max_expansions=max_expansions,
+            time_limit=time_limit,
+            max_turn_chain=max_turn_chain,
+            expander=expander,
+            lattice=lattice,
+        )
+        defaults = inspect.signature(planner_options).parameters
+        clash = [name for name, value in given.items() if value != defaults[name].default]
+        if clash:
+            raise ValueError(f"give either options or {', '.join(clash)}, not both")
+        return _apply(scenario, options)
     check_choice(planner, PLANNERS, "planner")
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
     default = planner == "lattice"
@@ -281,9 +318,18 @@ def planner_options(
             time_limit=time_limit,
             clearance=clearance,
         )
+    return _apply(scenario, options)
+
+
+Options = PaperOptions | DefaultOptions
+
+
+def _apply(scenario: Scenario, options: Options) -> tuple[Scenario, Options]:
+    """``scenario`` with ``options.clearance`` applied, and ``options``, after the checks that
+    need the scenario (the lattice's resolution <= L, even where the lattice is not run)."""
     if options.clearance > 0:
         scenario = with_clearance(scenario, options.clearance)
-    if default:  # the lattice's own check (resolution <= L), even where the lattice is not run
+    if isinstance(options, DefaultOptions):
         lattice_options(scenario, **options.lattice.search_options())
     return scenario, options
 

@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from .plan import check_option
+from .schedule import SCHEDULE, Schedule
 
 __all__ = [
     "ALPHA_METHODS",
@@ -301,6 +302,10 @@ class LatticeOptions:
     max_expansions : int
         Expansions before giving up (200000, ``LATTICE_MAX_EXPANSIONS``): set by hand in
         4a98571 (the lattice's first cut); not measured.
+    schedule : Schedule
+        When each of the lattice's mechanisms starts and how much it does
+        (:class:`segplan.planning.schedule.Schedule`, each field with its provenance);
+        default :data:`segplan.planning.schedule.SCHEDULE`.
     """
 
     resolution: float | None = None
@@ -311,6 +316,7 @@ class LatticeOptions:
     cell: float | None = None
     escapes: bool = True
     max_expansions: int = 200_000
+    schedule: Schedule = SCHEDULE
 
     def __post_init__(self):
         # the checks of lattice_options() that need no scenario (it adds resolution <= L)
@@ -326,11 +332,16 @@ class LatticeOptions:
         _set(self, "goal_radius", check_option(self.goal_radius, "goal_radius", 0.0, allow_none=True))
         _set(self, "cell", check_option(self.cell, "cell", 0.0, allow_none=True))
         _set(self, "max_expansions", _check_expansions(self.max_expansions))
+        if not isinstance(self.schedule, Schedule):
+            raise ValueError(
+                f"schedule must be a segplan.planning.schedule.Schedule, got {type(self.schedule).__name__}"
+            )
 
     def search_options(self) -> dict:
-        """The keyword arguments of ``lattice_search`` but the limits."""
-        out = dataclasses.asdict(self)
-        del out["max_expansions"]
+        """The keyword arguments of ``lattice_options`` (those of ``lattice_search`` but the
+        limits and the schedule)."""
+        out = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        del out["max_expansions"], out["schedule"]
         return out
 
     def to_dict(self) -> dict:

@@ -130,13 +130,15 @@ def lattice_stage(
     ctx: PlanningContext, options: LatticeOptions, max_expansions: int
 ) -> tuple[Plan, LinkModel]:
     """The lattice search on the context's floor and workspace, within ``max_expansions``
-    and the rest of the context's time (at least 1 ms)."""
+    and the context's deadline, with ``options``' schedule."""
     try:
         found, links = lattice_search(
             ctx.scenario,
             max_expansions=max_expansions,
-            time_limit=max(ctx.deadline.left(), 1e-3),
+            time_limit=ctx.deadline.limit,
+            t0=ctx.deadline.start,
             workspace=ctx.workspace,
+            schedule=options.schedule,
             **options.search_options(),
         )
     except NoPathError as exc:

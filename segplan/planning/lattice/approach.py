@@ -18,7 +18,7 @@ than ``L``), and no free union joins the start to one of them, the goal can be r
 neither by that lattice's primitives nor by a union from the start. A union from a state
 of the start's lattice might still reach it, so this is no proof: the search goes on for
 ``enclosed_expansions`` expansions, then stops with ``reason="expansions"`` and says
-why (the counts: :class:`segplan.planning.lattice.schedule.Schedule`). A goal a few
+why (the counts: :class:`segplan.planning.schedule.Schedule`). A goal a few
 decimetres in front of a wall, facing away from it, looks so (and is).
 """
 
@@ -32,10 +32,10 @@ import numpy as np
 from ...model.pose import Pose, wrap_floor
 from ...model.union import Union, cubic_coefficients, curvature_samples, peak_curvature
 from ..dubins import dubins_length
+from ..schedule import Schedule
 from .clearance import union_free_near, union_free_screened
 from .edges import LazyEdges
 from .frame import LatticeFrame
-from .schedule import Schedule
 
 __all__ = ["GoalApproach", "steerable"]
 
@@ -54,7 +54,7 @@ def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float) -> np.ndar
     than :class:`segplan.planning.links.LinkModel`'s steering fallback; ``slack`` keeps most
     unions the samples misjudge). A heuristic, not a proof: it only orders the tries of
     :meth:`GoalApproach.connect`, never decides that no plan exists
-    (:attr:`segplan.planning.lattice.schedule.Schedule.steer_slack`).
+    (:attr:`segplan.planning.schedule.Schedule.steer_slack`).
     """
     p1 = np.asarray(p1, dtype=float).reshape(-1, 3)
     dx, dy = p1[:, 0] - p0[0], p1[:, 1] - p0[1]
@@ -96,7 +96,7 @@ class GoalApproach:
         The certified tests.
     links : segplan.planning.links.LinkModel
         Makes the unions from the search's states (optimal reference system, steering fallback).
-    schedule : segplan.planning.lattice.schedule.Schedule
+    schedule : segplan.planning.schedule.Schedule
         When the tree is built and grown, how much it does.
     budget : float
         The tree keeps the states within this LONGD of the goal (default: all).

@@ -32,7 +32,7 @@ steering limit):
   (:class:`segplan.planning.lattice.guide.Guide`) with the smaller weight
   :attr:`Schedule.guided_weight`.
 
-When each mechanism starts and how much it does: :class:`segplan.planning.lattice.schedule.Schedule`.
+When each mechanism starts and how much it does: :class:`segplan.planning.schedule.Schedule`.
 """
 
 from __future__ import annotations
@@ -47,13 +47,13 @@ from ...model.pose import Pose, wrap_ieee
 from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..plan import Plan, lattice_plan, union_longd
+from ..schedule import SCHEDULE, Schedule
 from .approach import GoalApproach
 from .clearance import union_free_near, union_free_screened
 from .edges import LazyEdges
 from .frame import LatticeFrame, heading_angles
 from .guide import Guide
 from .primitives import primitive_set
-from .schedule import SCHEDULE, Schedule
 
 __all__ = ["GOAL", "LatticeAStar"]
 

@@ -29,7 +29,7 @@ from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
 from ..plan import Plan, union_longd, unions_longd
-from .schedule import SCHEDULE, Schedule
+from ..schedule import SCHEDULE, Schedule
 
 __all__ = [
     "RADIUS_FACTORS",

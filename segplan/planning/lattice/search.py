@@ -9,7 +9,7 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
 * :mod:`~segplan.planning.lattice.frame`: lattice states and world poses, a primitive's union
   from a state; :mod:`~segplan.planning.lattice.primitives`: the motion primitives;
   :mod:`~segplan.planning.lattice.clearance`: the clearance grid and the distance field;
-  :mod:`~segplan.planning.lattice.schedule`: when each mechanism starts and how much it does.
+  :mod:`~segplan.planning.schedule`: when each mechanism starts and how much it does.
 * :mod:`~segplan.planning.lattice.astar`: the A* at one resolution, composed of its parts:
   the lazy edges (:mod:`~segplan.planning.lattice.edges`), the goal's approach tree
   (:mod:`~segplan.planning.lattice.approach`) and the guide (:mod:`~segplan.planning.lattice.guide`).
@@ -45,12 +45,12 @@ from ...floor.scenario import Scenario
 from ...model.pose import Pose
 from ..links import LinkModel
 from ..plan import NoPathError, Plan, check_limits, check_option, direct_plan, lattice_plan
+from ..schedule import SCHEDULE, Schedule
 from ..validity import Workspace
 from .astar import LatticeAStar
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions
 from .escape import arc_pairs, improve_with_arcs, join_arcs
 from .primitives import max_reach, primitive_set
-from .schedule import SCHEDULE
 from .shortcut import shortcut_plan
 
 __all__ = [
@@ -339,7 +339,7 @@ def _escape(
     """Search again between the inner poses of tight arcs
     (:func:`segplan.planning.lattice.escape.arc_pairs` of ``exc.escapable``), the cheapest
     pairs first, at most
-    :attr:`~segplan.planning.lattice.schedule.Schedule.max_escapes` of them, at the first
+    :attr:`~segplan.planning.schedule.Schedule.max_escapes` of them, at the first
     resolution only, while the limits of the whole call allow (``max_expansions``, counted
     from ``exc.expanded``; ``deadline``). Returns the arcs around the first plan found;
     re-raises ``exc`` (with the expansions and the time of every try added) if none."""
@@ -383,6 +383,7 @@ def lattice_search(
     t0=None,
     workspace=None,
     escapes=True,
+    schedule: Schedule = SCHEDULE,
 ):
     """:func:`plan_lattice`, also returning the :class:`segplan.planning.links.LinkModel` it used.
 
@@ -394,7 +395,9 @@ def lattice_search(
     lattice, tried once between the start and the goal, would multiply the time of every
     pair); when its plan costs far more than the Dubins length, try the paper's direct
     union between their ends (within ``time_limit``).
-    The schedule of every search: :data:`segplan.planning.lattice.schedule.SCHEDULE`.
+    ``schedule``: when each mechanism starts and how much it does
+    (:class:`segplan.planning.schedule.Schedule`; default
+    :data:`segplan.planning.schedule.SCHEDULE`, the one every plan of the package is made with).
     """
     options = lattice_options(
         scenario,
@@ -406,7 +409,8 @@ def lattice_search(
         cell=cell,
         escapes=escapes,
     )
-    schedule = SCHEDULE
+    if not isinstance(schedule, Schedule):
+        raise ValueError(f"schedule must be a Schedule, got {type(schedule).__name__}")
     t0 = time.perf_counter() if t0 is None else t0
     if workspace is None:
         robot = scenario.robot

@@ -23,7 +23,7 @@ def shortcut_plan(
     plan: Plan, ex: LinkModel, grid: ClearanceGrid, t0: float, window: int, deadline: float = math.inf
 ) -> Plan:
     """Greedy shortcuts of a found plan: from each node, the farthest node within ``window``
-    (:attr:`segplan.planning.lattice.schedule.Schedule.shortcut_window`) that one free union
+    (:attr:`segplan.planning.schedule.Schedule.shortcut_window`) that one free union
     reaches for no more LONGD than the chain.
 
     A lattice plan has a node every few tenths of a metre; this keeps its shape with far
