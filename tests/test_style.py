@@ -22,3 +22,17 @@ def test_ruff_lint_is_clean():
 def test_ruff_format_is_clean():
     out = ruff("format", "--check", "segplan", "tests", "benchmarks")
     assert out.returncode == 0, out.stdout + out.stderr
+
+
+#: A smoke alarm, not a rule to code to (issue 24): a module is one idea and is split where a
+#: concept ends, never to fit a number; a module past this many lines is worth a look.
+SMOKE_ALARM_LINES = 800
+
+
+def test_no_module_sets_off_the_line_smoke_alarm():
+    long = {
+        str(p.relative_to(ROOT)): n
+        for p in sorted((ROOT / "segplan").rglob("*.py"))
+        if (n := len(p.read_text(encoding="utf-8").splitlines())) > SMOKE_ALARM_LINES
+    }
+    assert not long, f"modules over {SMOKE_ALARM_LINES} lines (is each still one idea?): {long}"
