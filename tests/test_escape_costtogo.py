@@ -101,7 +101,7 @@ def _side(arc):
 
 def _check_arcs(sc, pose, into):
     ws = _workspace(sc)
-    arcs = tight_arcs(ws, LinkModel(ws), pose, R, into=into)
+    arcs = tight_arcs(LinkModel(ws), pose, R, into=into)
     p = tuple(pose)
     for arc in arcs:
         assert arc.into is into
@@ -269,7 +269,7 @@ def test_improve_with_arcs_returns_a_plan_near_the_dubins_length_unchanged():
     ws = _workspace(sc)
     plan, _ = lattice_search(sc, escapes=False, workspace=ws)
     assert plan.cost <= SCHEDULE.improve_gap * dubins_length_scalar(*sc.start, *sc.goal, R)
-    assert improve_with_arcs(sc, ws, plan, 0.0) is plan
+    assert improve_with_arcs(sc, LinkModel(ws), plan, 0.0) is plan
     again, _ = lattice_search(sc)
     assert [(u.p0, u.p1, u.alpha) for u in again.unions] == [(u.p0, u.p1, u.alpha) for u in plan.unions]
     assert again.kinds == plan.kinds and again.cost == plan.cost

@@ -9,6 +9,7 @@ from test_lattice_parts import astar_of, plan_of
 from segplan.planning.lattice.escape import improve_with_arcs
 from segplan.planning.lattice.search import lattice_search
 from segplan.planning.lattice.shortcut import shortcut_plan
+from segplan.planning.links import LinkModel
 from segplan.planning.schedule import SCHEDULE
 from segplan.planning.validity import Workspace
 from segplan.studies import floors
@@ -18,11 +19,11 @@ def test_improve_with_arcs_stops_at_the_deadline():
     sc = floors.random_floor("any", 166)  # a plan the arcs improve (test_escape_costtogo)
     ws = Workspace(sc.enlarged, sc.robot.L, sc.free_bounds, sc.robot.max_curvature)
     plan, _ = lattice_search(sc, escapes=False, workspace=ws)
-    assert improve_with_arcs(sc, ws, plan, 0.0, deadline=time.perf_counter() - 1.0) is plan
-    improved = improve_with_arcs(sc, ws, plan, 0.0, deadline=time.perf_counter() + 60.0)
+    assert improve_with_arcs(sc, LinkModel(ws), plan, 0.0, deadline=time.perf_counter() - 1.0) is plan
+    improved = improve_with_arcs(sc, LinkModel(ws), plan, 0.0, deadline=time.perf_counter() + 60.0)
     assert "arc" in improved.kinds and improved.cost < plan.cost
     # the default (no deadline) is the same plan as a deadline far away
-    assert improve_with_arcs(sc, ws, plan, 0.0).nodes == improved.nodes
+    assert improve_with_arcs(sc, LinkModel(ws), plan, 0.0).nodes == improved.nodes
 
 
 def test_shortcuts_stop_at_the_deadline():

@@ -30,7 +30,7 @@ def lint_imports(config: Path, cwd: Path) -> subprocess.CompletedProcess:
 def test_layers_contract_is_kept():
     out = lint_imports(ROOT / "pyproject.toml", ROOT)
     assert out.returncode == 0, out.stdout + out.stderr
-    assert "6 kept, 0 broken" in out.stdout
+    assert "7 kept, 0 broken" in out.stdout
 
 
 def _copy_with(tmp_path: Path, module: str, code: str) -> subprocess.CompletedProcess:
@@ -59,6 +59,12 @@ def _copy_with(tmp_path: Path, module: str, code: str) -> subprocess.CompletedPr
             "planning/lattice/shortcut.py",
             "..paper.search",
             "segplan.planning.lattice.shortcut -> segplan.planning.paper.search",
+        ),
+        # the paper's search may not use the lattice (the independence contract, too)
+        (
+            "planning/paper/expansion.py",
+            "..lattice.frame",
+            "segplan.planning.paper.expansion -> segplan.planning.lattice.frame",
         ),
         # inside a sub-package: the union may not know the cost
         ("model/union.py", ".cost", "segplan.model.union -> segplan.model.cost"),

@@ -19,7 +19,6 @@ baseline ``cost="distance"``) compare fairly.
 from __future__ import annotations
 
 import time
-import weakref
 
 from ..floor.scenario import Scenario
 from ..model.cost import chain_longd
@@ -35,18 +34,12 @@ from .plan import PLAN_RTOL, NoPathError, Plan
 __all__ = ["lattice_stage", "paper_offline", "paper_search"]
 
 
-_DS_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
 def _scenario_ds(scenario: Scenario) -> float:
-    """:func:`characteristic_dimension` of a scenario, computed once (the paper's off-line step)."""
-    ds = _DS_CACHE.get(scenario)
-    if ds is None:
-        ds = characteristic_dimension(
-            scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L, groups=scenario.outline_of
-        )
-        _DS_CACHE[scenario] = ds
-    return ds
+    """:func:`characteristic_dimension` of a scenario (the paper's off-line step, outside the
+    planning time; a few milliseconds on the book's floors, so no cache keeps it)."""
+    return characteristic_dimension(
+        scenario.enlarged, scenario.free_bounds, fallback=scenario.robot.L, groups=scenario.outline_of
+    )
 
 
 def paper_offline(scenario: Scenario, options: PaperOptions) -> float:

@@ -77,15 +77,14 @@ def _circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
     return Pose(x, y, wrap_ieee(th))
 
 
-def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:
+def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc]:
     """Free arcs out of ``pose`` (``into=False``) or into it (``into=True``), both sides.
 
     Parameters
     ----------
-    ws : segplan.planning.validity.Workspace
-        The certified tests (free, in bounds, steering limit) of every union.
     links : segplan.planning.links.LinkModel
-        Makes the unions (optimal reference system, steering fallback).
+        Makes the unions (optimal reference system, steering fallback); its workspace
+        (``links.ws``) has the certified tests (free, in bounds, steering limit).
     pose : segplan.Pose
     R : float
         The minimum turning radius.
@@ -97,6 +96,7 @@ def tight_arcs(ws, links, pose, R: float, into: bool = False) -> list[Arc]:
     list of Arc
         One per side and per turn of :data:`TURNS` reached with every union free.
     """
+    ws = links.ws
     p = Pose(*pose)
     out = []
     per = [int(round(t / STEP)) for t in TURNS]
@@ -154,22 +154,26 @@ def escape_pairs(starts: list[Arc], goals: list[Arc], start, goal, R: float) -> 
     return [(est, a, b) for est, _, a, b in pairs]
 
 
-def arc_pairs(scenario, ws, ends: str) -> list[tuple]:
+def arc_pairs(scenario, links: LinkModel, ends: str) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first.
 
     ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
     ``"both"`` after an exhausted lattice, ``"goal"`` after one whose goal looked enclosed.
     """
-    links = LinkModel(ws)
     R = scenario.robot.min_turning_radius
-    starts = tight_arcs(ws, links, scenario.start, R) if ends == "both" else []
-    goals = tight_arcs(ws, links, scenario.goal, R, into=True)
+    starts = tight_arcs(links, scenario.start, R) if ends == "both" else []
+    goals = tight_arcs(links, scenario.goal, R, into=True)
     return escape_pairs(starts, goals, scenario.start, scenario.goal, R)
 
 
 def improve_with_arcs(
-    scenario, ws, plan: Plan, t0: float, deadline: float = math.inf, schedule: Schedule = SCHEDULE
+    scenario,
+    links: LinkModel,
+    plan: Plan,
+    t0: float,
+    deadline: float = math.inf,
+    schedule: Schedule = SCHEDULE,
 ) -> Plan:
     """A cheaper plan through tight arcs at its ends, or ``plan`` itself.
 
@@ -188,8 +192,8 @@ def improve_with_arcs(
         return plan
     if time.perf_counter() > deadline:
         return plan
-    links = LinkModel(ws)
-    pairs = escape_pairs(tight_arcs(ws, links, s, R), tight_arcs(ws, links, g, R, into=True), s, g, R)
+    ws = links.ws
+    pairs = escape_pairs(tight_arcs(links, s, R), tight_arcs(links, g, R, into=True), s, g, R)
     best = plan
     for est, a, b in pairs:
         if est >= best.cost:

@@ -43,6 +43,7 @@ import numpy as np
 
 from ...floor.scenario import Scenario
 from ...model.pose import Pose
+from ..context import workspace_of
 from ..links import LinkModel
 from ..plan import NoPathError, Plan, check_limits, check_option, direct_plan, lattice_plan
 from ..schedule import SCHEDULE, Schedule
@@ -215,11 +216,11 @@ def _lattice_search(
     max_expansions,
     time_limit,
     t0,
-    workspace,
+    links: LinkModel,
     schedule=SCHEDULE,
 ):
-    """:func:`lattice_search` without the escapes (one lattice search, its retry); the
-    options checked by :func:`lattice_options`."""
+    """:func:`lattice_search` without the escapes (one lattice search, its retry), its
+    unions made by ``links`` (on ``links.ws``); the options checked by :func:`lattice_options`."""
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
@@ -232,13 +233,12 @@ def _lattice_search(
     primitive_set(L, robot.max_steer, tries[0])
     t0 = time.perf_counter() if t0 is None else t0
     deadline = t0 + time_limit
-    ws = workspace or Workspace(scenario.enlarged, L, scenario.free_bounds, robot.max_curvature)
-    ex = LinkModel(ws)
+    ws = links.ws
     start, goal = scenario.start, scenario.goal
     # the paper's direct union first: where it is free, it is the plan (no grid to build)
-    direct = None if start == goal else ex.union(start, goal)
+    direct = None if start == goal else links.union(start, goal)
     if start == goal or (direct is not None and ws.union_free(direct)):
-        return direct_plan(start, direct, time.perf_counter() - t0, ws.stats), ex
+        return direct_plan(start, direct, time.perf_counter() - t0, ws.stats), links
     grid, field = lattice_floor(scenario, ws, tries, cell, schedule)
     gl = grid.to_lattice(np.array([goal[:2]]))[0]
 
@@ -268,7 +268,7 @@ def _lattice_search(
         search = LatticeAStar(
             scenario,
             ws,
-            ex,
+            links,
             grid,
             field,
             r,
@@ -288,7 +288,7 @@ def _lattice_search(
             # makes the guarantee independent of it)
             bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
             if not bad:
-                return shortcut_plan(plan, ex, grid, t0, schedule.shortcut_window, deadline), ex
+                return shortcut_plan(plan, links, grid, t0, schedule.shortcut_window, deadline), links
             for i in bad:  # never seen in our tests; the search runs again without them
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
@@ -328,7 +328,7 @@ def _lattice_search(
 
 def _escape(
     scenario,
-    workspace,
+    links: LinkModel,
     exc: NoPathError,
     options: dict,
     max_expansions: int,
@@ -343,7 +343,7 @@ def _escape(
     resolution only, while the limits of the whole call allow (``max_expansions``, counted
     from ``exc.expanded``; ``deadline``). Returns the arcs around the first plan found;
     re-raises ``exc`` (with the expansions and the time of every try added) if none."""
-    pairs = arc_pairs(scenario, workspace, exc.escapable)[: schedule.max_escapes]
+    pairs = arc_pairs(scenario, links, exc.escapable)[: schedule.max_escapes]
     used = exc.expanded
     for _, a, b in pairs:
         left = deadline - time.perf_counter()
@@ -356,7 +356,7 @@ def _escape(
                 max_expansions=max_expansions - used,
                 time_limit=left,
                 t0=None,
-                workspace=workspace,
+                links=links,
                 schedule=schedule,
                 **{**options, "retry": False},
             )
@@ -412,16 +412,14 @@ def lattice_search(
     if not isinstance(schedule, Schedule):
         raise ValueError(f"schedule must be a Schedule, got {type(schedule).__name__}")
     t0 = time.perf_counter() if t0 is None else t0
-    if workspace is None:
-        robot = scenario.robot
-        workspace = Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
+    links = LinkModel(workspace_of(scenario) if workspace is None else workspace)
     try:
-        plan, links = _lattice_search(
+        plan, _ = _lattice_search(
             scenario,
             max_expansions=max_expansions,
             time_limit=time_limit,
             t0=t0,
-            workspace=workspace,
+            links=links,
             schedule=schedule,
             **options,
         )
@@ -429,8 +427,7 @@ def lattice_search(
         if not (escapes and getattr(exc, "escapable", "")):
             raise
         limit = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
-        plan = _escape(scenario, workspace, exc, options, limit, t0 + float(time_limit), t0, schedule)
-        links = LinkModel(workspace)
+        plan = _escape(scenario, links, exc, options, limit, t0 + float(time_limit), t0, schedule)
     if escapes:
-        plan = improve_with_arcs(scenario, workspace, plan, t0, t0 + float(time_limit), schedule)
+        plan = improve_with_arcs(scenario, links, plan, t0, t0 + float(time_limit), schedule)
     return plan, links
