@@ -189,6 +189,7 @@ def test_the_default_schedule_is_the_one_every_plan_was_made_with():
         "max_escapes": 16,
         "improve_gap": 1.3,
         "shortcut_window": 16,
+        "wide_turn_cells": 32,  # issue 25: no usual robot's plan changes (the test below)
     }
     assert SCHEDULE == Schedule()
     assert SCHEDULE.margin(1.0, 1.0) == 8.0 and SCHEDULE.margin(0.5, 2.0) == 4.0 * 0.5 + 4.0 * 2.0

@@ -282,9 +282,11 @@ def _lattice_search(
 
     escapable = ""  # may tight arcs at the start or goal help? (not after a proof)
 
-    def fail(reason, message, expanded, generated, best):
-        exc = NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
+    def fail(reason, head, expanded, generated, best):
+        exc = NoPathError(f"{head}; expanded {expanded} states", reason, expanded, generated, 0.0, best)
+        exc.seconds = time.perf_counter() - t0
         exc.escapable = escapable
+        exc.head = head  # the message without its count (the escapes add to both)
         raise exc
 
     la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
@@ -335,8 +337,12 @@ def _lattice_search(
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
             if outcome == "exhausted":
-                what = "every reachable lattice state was expanded at resolution " + " and ".join(
-                    f"{t:.4g} m" for t, _, _ in proofs
+                what = (
+                    "every lattice state reachable from the start was expanded at resolution "
+                    + " and ".join(f"{t:.4g} m" for t, _, _ in proofs)
+                    + ": no chain of the lattice's unions reaches the goal (not a proof that no "
+                    "path exists: one may need turns tighter than the lattice's, e.g. a start or "
+                    "a goal facing an obstacle close by)"
                 )
             elif outcome == "enclosed":
                 what = (
@@ -356,7 +362,7 @@ def _lattice_search(
             escapable = "both" if outcome == "exhausted" else "goal" if proofs[-1][1] == "enclosed" else ""
             fail(
                 outcome,
-                f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded_total} states",
+                f"no path from {tuple(start)} to {tuple(goal)}: {what}",
                 expanded_total,
                 len(search.g),
                 best,
@@ -383,10 +389,12 @@ def _escape(
     re-raises ``exc`` (with the expansions and the time of every try added) if none."""
     pairs = arc_pairs(scenario, links, exc.escapable)[: schedule.max_escapes]
     used = exc.expanded
+    tries = 0
     for _, a, b in pairs:
         left = deadline - time.perf_counter()
         if used >= max_expansions or left <= 0:
             break
+        tries += 1
         sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
         try:
             inner, _ = _lattice_search(
@@ -404,6 +412,8 @@ def _escape(
         return join_arcs(scenario, a, inner, b, used + inner.expanded, t0)
     exc.expanded = used
     exc.seconds = time.perf_counter() - t0
+    tried = f"searches between tight arcs at the ends: {tries} of {len(pairs)} tried, none joined"
+    exc.args = (f"{exc.head}; {tried}; expanded {used} states",)
     raise exc
 
 
