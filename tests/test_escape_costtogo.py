@@ -211,6 +211,12 @@ def test_no_escape_where_the_kinematics_forbid_a_forward_turn(gap):
     with pytest.raises(NoPathError) as e:
         lattice_search(sc)
     assert e.value.reason == "exhausted"
+    # the message says what was tried and counts what the error counts (issue 25: --json and
+    # the message disagreed after the escapes), and claims no proof it does not have
+    message = str(e.value)
+    assert message.endswith(f"; expanded {e.value.expanded} states")
+    assert "searches between tight arcs at the ends:" in message and "none joined" in message
+    assert "not a proof that no path exists" in message and "tighter than the lattice's" in message
 
 
 def test_escape_searches_run_at_the_first_resolution_only(monkeypatch):

@@ -189,6 +189,7 @@ def test_the_default_schedule_is_the_one_every_plan_was_made_with():
         "max_escapes": 16,
         "improve_gap": 1.3,
         "shortcut_window": 16,
+        "wide_turn_cells": 32,  # issue 25: no usual robot's plan changes (the test below)
     }
     assert SCHEDULE == Schedule()
     assert SCHEDULE.margin(1.0, 1.0) == 8.0 and SCHEDULE.margin(0.5, 2.0) == 4.0 * 0.5 + 4.0 * 2.0
@@ -220,3 +221,43 @@ def test_a_schedule_is_a_frozen_value():
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.guide_after = 1  # type: ignore[misc]
     assert s == dataclasses.replace(SCHEDULE, approach_tries=0, guide_after=10**9)
+
+
+def test_a_wide_turning_robot_gets_a_coarser_lattice_and_the_usual_ones_keep_L_over_8():
+    """Issue 25: the default resolution is L / 8, or R / wide_turn_cells (at most L) for a robot
+    turning wider than 4 L, so its primitives stay few; every usual robot keeps L / 8 exactly."""
+    from segplan import load_scenario
+    from segplan.planning.lattice.search import _default_resolution
+
+    for L in (0.5, 1.0, 1.2, 2.5):
+        for steer in (25, 35, 45, 60, 14.05):  # R = L / tan(steer) <= 4 L
+            R = L / math.tan(math.radians(steer))
+            assert _default_resolution(L, R, SCHEDULE) == 0.125 * L
+        R = L / math.tan(math.radians(5.0))  # about 11.4 L
+        assert _default_resolution(L, R, SCHEDULE) == R / SCHEDULE.wide_turn_cells
+        assert _default_resolution(L, 1e9 * L, SCHEDULE) == L
+    sc = load_scenario("fig5_example1")
+    tries, _ = lattice_resolutions(sc, None, True, None, SCHEDULE)
+    assert tries == [0.125 * sc.robot.L, 0.0625 * sc.robot.L]
+
+
+@pytest.mark.parametrize("steer_deg", [1e-6, 0.01])
+def test_a_robot_that_cannot_turn_on_the_floor_is_refused_at_once(steer_deg, monkeypatch):
+    """Issue 25: a 1e-6 deg steering limit on Fig. 5's floor took 10 GB before an "array is
+    too big"; now a ValueError naming max_steer, before any work (no primitives computed).
+    The paper's planner, which needs no lattice, still runs."""
+    import segplan
+    from segplan.planning.lattice import search
+
+    base = segplan.load_scenario("fig5_example1")
+    robot = segplan.Robot(base.robot.L, base.robot.half_width, math.radians(steer_deg))
+    sc = segplan.make_scenario(robot, base.start, base.goal, list(base.outlines), base.bounds)
+
+    def no_primitives(*args):
+        raise AssertionError("primitives computed for a robot that cannot turn on the floor")
+
+    monkeypatch.setattr(search, "primitive_set", no_primitives)
+    with pytest.raises(ValueError, match="max_steer=.*turns far wider than the floor"):
+        segplan.plan_scenario(sc)
+    with pytest.raises(segplan.NoPathError):
+        segplan.plan_scenario(sc, planner="paper", max_expansions=50)

@@ -37,7 +37,7 @@ def test_default_options_list_every_value_of_the_default_planner():
     o = DefaultOptions()
     assert o.paper == PaperOptions(max_expansions=40, time_limit=2.0)
     assert (o.paper_share, o.lattice_after_paper, o.near_lower_bound) == (0.2, 400, 1.3)
-    assert o.lattice == LatticeOptions() and o.refine == RefineOptions(max_sweeps=3)
+    assert o.lattice == LatticeOptions() and o.refine == RefineOptions()
     assert (o.time_limit, o.clearance) == (10.0, 0.0)
     # the former module names read the dataclass
     assert api.PAPER_SHARE == o.paper_share and api.PAPER_EXPANSIONS == o.paper.max_expansions
@@ -63,7 +63,7 @@ def test_lattice_options_are_the_lattices_defaults():
         else:
             assert getattr(o, f.name) == sig[f.name].default, f.name
     # and lattice_options() accepts exactly these (but the limits)
-    accepted = set(inspect.signature(lattice.lattice_options).parameters) - {"scenario"}
+    accepted = set(inspect.signature(lattice.lattice_options).parameters) - {"scenario", "schedule"}
     assert accepted == set(o.search_options())
     assert lattice.GOAL_RADIUS == (2.0, 1.0)  # goal_radius None: 2 R + L, as documented
 
@@ -202,7 +202,7 @@ def test_a_plan_records_its_planner_and_options():
     assert paper.planner == "paper" and paper.options == PaperOptions(heuristic="c")
     d = default.to_dict()
     assert d["planner"] == "lattice" and d["options"]["paper"]["max_expansions"] == 40
-    assert d["options"]["refine"]["max_sweeps"] == 3 and d["options"]["lattice"]["weight"] == 2.0
+    assert d["options"]["refine"]["max_sweeps"] == 6 and d["options"]["lattice"]["weight"] == 2.0
     # the recorded options plan the same plan again, through the public door
     for made in (default, paper):
         again = segplan.plan_scenario(sc, options=made.options)

@@ -151,7 +151,7 @@ def plan_scenario(
     refine : bool or dict, optional
         Beyond the paper: refine the plan found (:func:`segplan.refine`: shortcuts,
         splits, local moves of the nodes), with default options (True; for the lattice
-        planner at most 3 sweeps, ``DefaultOptions().refine``) or these keyword arguments
+        planner ``DefaultOptions().refine``, applied to each plan found) or these keyword arguments
         (a dict, :class:`segplan.planning.options.RefineOptions`' fields). ``Plan.seconds``
         then counts search and refinement, and ``time_limit`` bounds both: past it the
         refinement starts no new work (``Plan.refinement.stopped``). Default: True for the
@@ -330,7 +330,7 @@ def _apply(scenario: Scenario, options: Options) -> tuple[Scenario, Options]:
     if options.clearance > 0:
         scenario = with_clearance(scenario, options.clearance)
     if isinstance(options, DefaultOptions):
-        lattice_options(scenario, **options.lattice.search_options())
+        lattice_options(scenario, schedule=options.lattice.schedule, **options.lattice.search_options())
     return scenario, options
 
 

@@ -8,8 +8,13 @@
    expansions more to look for a shorter one (``lattice_after_paper``), none if that plan is
    already within ``near_lower_bound`` of a lower bound; otherwise up to
    ``lattice.max_expansions`` and the rest of the time.
-3. **The refinement** (:func:`segplan.planning.refine.refine_with`) of the shorter plan
-   found, with the link model of the search that found it, until the call's deadline.
+3. **The refinement** (:func:`segplan.planning.refine.refine_with`) of each plan found
+   (the paper's and the lattice's; the one of lower cost first), each with the link model
+   of the search that found it, until the call's deadline; the shorter refined plan is
+   the answer. So the default plan is never longer than ``segplan.refine`` of the paper's
+   plan where the paper's search found that plan within the default's expansions (a
+   refinement of the two, not of the shorter alone: a longer plan refines to the shorter
+   one about as often as not, see :class:`segplan.planning.options.DefaultOptions`).
 
 Both searches share the context's one validity checker.
 """
@@ -54,20 +59,22 @@ def default_pipeline(ctx: PlanningContext, options: DefaultOptions) -> Plan:
     except NoPathError:
         pass
     # 2. the lattice
-    found, links = paper, paper_links
+    found = [] if paper is None else [(paper, paper_links)]
     expansions = lattice_budget(ctx, options, paper)
     if expansions > 0:
         try:
-            found, links = lattice_stage(ctx, options.lattice, expansions)
+            found.append(lattice_stage(ctx, options.lattice, expansions))
         except NoPathError as exc:
             if paper is None:
                 raise _named_limits(exc, ctx, options) from None
-    if paper is not None and paper.cost < found.cost:
-        found, links = paper, paper_links
-    # 3. the refinement
+    # the shorter first (the paper's on a tie): it is the answer without refinement, and the
+    # one refined first when time is short
+    found.sort(key=lambda pair: pair[0].cost)
     if options.refine is None:
-        return found
-    return refine_with(found, links, options.refine, deadline=ctx.deadline)
+        return found[0][0]
+    # 3. the refinement of each, the shorter refined plan kept (the first on a tie)
+    refined = [refine_with(plan, links, options.refine, deadline=ctx.deadline) for plan, links in found]
+    return min(refined, key=lambda plan: plan.cost)
 
 
 def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOptions) -> NoPathError:

@@ -92,6 +92,15 @@ class Schedule:
     improve_gap : float
         A found plan is worth improving by tight arcs when it costs more than this many times
         the Dubins length of its ends. Set by hand in 4f681d4; not measured.
+    wide_turn_cells : int
+        A robot turning wider than usual gets a coarser lattice: the default resolution is
+        ``R / wide_turn_cells`` where that exceeds ``L / 8`` (at most ``L``), so its
+        primitives (about ``(R / resolution)^2`` candidate end cells) stay as many as those
+        of a robot with ``R = wide_turn_cells L / 8`` (4 L: steering limit 14 deg). 32
+        (issue 25): on Fig. 5's floor with a 5 deg (3 deg) steering limit the primitives
+        took 9 s (23 s) and 164 MB (323 MB) at ``L / 8`` before the search began; every
+        robot of the book, the robots probe (25-60 deg) and chapter 9 turns tighter than
+        4 L and keeps ``L / 8``.
     shortcut_window : int
         Nodes ahead that the greedy shortcuts of a found plan try to reach by one union. Set
         by hand in aff5201; not measured.
@@ -113,6 +122,7 @@ class Schedule:
     max_escapes: int = 16
     improve_gap: float = 1.3
     shortcut_window: int = 16
+    wide_turn_cells: int = 32
 
     def __post_init__(self):
         floats = {"steer_slack": 0.0, "guided_weight": 1.0, "improve_gap": 0.0}

@@ -148,10 +148,18 @@ def lattice_options(
     goal_radius=None,
     cell=None,
     escapes=True,
+    schedule: Schedule = SCHEDULE,
 ):
     """The options of :func:`lattice_search` checked (ValueError naming a bad one), as a
     dict without ``escapes``; :func:`segplan.plan_scenario` checks them even where it
-    does not run the lattice."""
+    does not run the lattice.
+
+    Also refused: a robot whose turns are far wider than the floor (its turning
+    primitives at the first resolution reach more than twice across the floor: the
+    bounds, or without walls the box of the start, the goal and the obstacles). No turn
+    of the lattice fits there; computing its primitives would take minutes and gigabytes
+    (issue 25: a 1e-6 deg steering limit on Fig. 5's floor took 10 GB).
+    """
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
     L = scenario.robot.L
@@ -161,6 +169,9 @@ def lattice_options(
     for name, flag in (("retry", retry), ("escapes", escapes)):
         if not isinstance(flag, bool):
             raise ValueError(f"{name} must be True or False, got {flag!r}")
+    if not isinstance(schedule, Schedule):
+        raise ValueError(f"schedule must be a Schedule, got {type(schedule).__name__}")
+    _check_turns_fit(scenario, resolution, schedule)
     return {
         "resolution": resolution,
         "weight": check_option(weight, "weight", 1.0, lo_ok=True),  # 1: the admissible h'
@@ -169,6 +180,32 @@ def lattice_options(
         "goal_radius": check_option(goal_radius, "goal_radius", 0.0, allow_none=True),
         "cell": check_option(cell, "cell", 0.0, allow_none=True),
     }
+
+
+def _check_turns_fit(scenario, resolution, schedule: Schedule) -> None:
+    """ValueError if the robot's turning primitives reach more than twice across the floor
+    (:func:`lattice_options`)."""
+    robot = scenario.robot
+    res = resolution or _default_resolution(robot.L, robot.min_turning_radius, schedule)
+    reach = max_reach(robot.L, robot.max_steer, res)
+    fb = scenario.free_bounds
+    if fb is None:
+        pts = np.concatenate([np.array([scenario.start[:2], scenario.goal[:2]])] + list(scenario.enlarged))
+        fb = (*pts.min(axis=0), *pts.max(axis=0))
+    across = math.hypot(fb[2] - fb[0], fb[3] - fb[1])
+    if not reach <= 2.0 * across:
+        raise ValueError(
+            f"max_steer={math.degrees(robot.max_steer):.3g} deg: the robot turns far wider than the "
+            f"floor (minimum turning radius R={robot.min_turning_radius:.3g} m; the lattice's turns "
+            f"reach {reach:.3g} m, the floor is {across:.3g} m across): the default planner cannot "
+            "turn on it; planner='paper' joins the poses by the paper's unions alone"
+        )
+
+
+def _default_resolution(L: float, R: float, schedule: Schedule) -> float:
+    """The lattice's first resolution by default: ``L / 8``, or ``R / wide_turn_cells`` for a
+    robot turning wider (at most ``L``; :attr:`segplan.planning.schedule.Schedule.wide_turn_cells`)."""
+    return min(L, max(0.125 * L, R / schedule.wide_turn_cells))
 
 
 def lattice_floor(scenario, ws: Workspace, tries: list[float], cell: float, schedule=SCHEDULE):
@@ -195,11 +232,12 @@ def lattice_floor(scenario, ws: Workspace, tries: list[float], cell: float, sche
 def lattice_resolutions(
     scenario, resolution, retry: bool, cell, schedule=SCHEDULE
 ) -> tuple[list[float], float]:
-    """The resolutions to try (``resolution``, default ``L / 8``, then half of it if ``retry``)
-    and the clearance grid's cell (:func:`segplan.planning.lattice.clearance.grid_resolutions`)."""
+    """The resolutions to try (``resolution``, default ``L / 8`` or coarser for a robot that
+    turns wide (:func:`_default_resolution`), then half of it if ``retry``) and the clearance
+    grid's cell (:func:`segplan.planning.lattice.clearance.grid_resolutions`)."""
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
-    res = resolution or 0.125 * L
+    res = resolution or _default_resolution(L, R, schedule)
     tries = [res, 0.5 * res] if retry else [res]
     return grid_resolutions(scenario, tries, cell, schedule.margin(L, R), resolution is None)
 
@@ -244,9 +282,11 @@ def _lattice_search(
 
     escapable = ""  # may tight arcs at the start or goal help? (not after a proof)
 
-    def fail(reason, message, expanded, generated, best):
-        exc = NoPathError(message, reason, expanded, generated, time.perf_counter() - t0, best)
+    def fail(reason, head, expanded, generated, best):
+        exc = NoPathError(f"{head}; expanded {expanded} states", reason, expanded, generated, 0.0, best)
+        exc.seconds = time.perf_counter() - t0
         exc.escapable = escapable
+        exc.head = head  # the message without its count (the escapes add to both)
         raise exc
 
     la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
@@ -297,8 +337,12 @@ def _lattice_search(
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
             if outcome == "exhausted":
-                what = "every reachable lattice state was expanded at resolution " + " and ".join(
-                    f"{t:.4g} m" for t, _, _ in proofs
+                what = (
+                    "every lattice state reachable from the start was expanded at resolution "
+                    + " and ".join(f"{t:.4g} m" for t, _, _ in proofs)
+                    + ": no chain of the lattice's unions reaches the goal (not a proof that no "
+                    "path exists: one may need turns tighter than the lattice's, e.g. a start or "
+                    "a goal facing an obstacle close by)"
                 )
             elif outcome == "enclosed":
                 what = (
@@ -318,7 +362,7 @@ def _lattice_search(
             escapable = "both" if outcome == "exhausted" else "goal" if proofs[-1][1] == "enclosed" else ""
             fail(
                 outcome,
-                f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded_total} states",
+                f"no path from {tuple(start)} to {tuple(goal)}: {what}",
                 expanded_total,
                 len(search.g),
                 best,
@@ -345,10 +389,12 @@ def _escape(
     re-raises ``exc`` (with the expansions and the time of every try added) if none."""
     pairs = arc_pairs(scenario, links, exc.escapable)[: schedule.max_escapes]
     used = exc.expanded
+    tries = 0
     for _, a, b in pairs:
         left = deadline - time.perf_counter()
         if used >= max_expansions or left <= 0:
             break
+        tries += 1
         sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
         try:
             inner, _ = _lattice_search(
@@ -366,6 +412,8 @@ def _escape(
         return join_arcs(scenario, a, inner, b, used + inner.expanded, t0)
     exc.expanded = used
     exc.seconds = time.perf_counter() - t0
+    tried = f"searches between tight arcs at the ends: {tries} of {len(pairs)} tried, none joined"
+    exc.args = (f"{exc.head}; {tried}; expanded {used} states",)
     raise exc
 
 
@@ -408,9 +456,8 @@ def lattice_search(
         goal_radius=goal_radius,
         cell=cell,
         escapes=escapes,
+        schedule=schedule,
     )
-    if not isinstance(schedule, Schedule):
-        raise ValueError(f"schedule must be a Schedule, got {type(schedule).__name__}")
     t0 = time.perf_counter() if t0 is None else t0
     links = LinkModel(workspace_of(scenario) if workspace is None else workspace)
     try:
