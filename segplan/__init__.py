@@ -27,8 +27,8 @@ The house, every dependency pointing down (enforced by the import-linter contrac
     floor/                         geometry, decompose, sweep, collision, scenario, random_floors
     model/                         pose, union, romberg, cost, frame, frame_exact, derivation, constants
 
-    planning/:  api > default > refine | stages > paper/ | lattice/ > context
-                > links | options > schedule > validity | plan | dubins
+    planning/:  api > default > refine | stages > paper/ | lattice/ > context | plan
+                > links | options > schedule > validity | dubins | checks
     paper/ (the paper's search):  search > problem | expansion > bisectrix
     lattice/ (beyond the paper):  search > escape | shortcut > astar > approach | guide
                                   > edges | clearance | primitives > frame
