@@ -166,7 +166,8 @@ class RefineOptions:
 
     @classmethod
     def from_dict(cls, data) -> RefineOptions:
-        """The options of a :meth:`to_dict` (read back from JSON): ``from_dict(o.to_dict()) == o``."""
+        """The options of a :meth:`RefineOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o``."""
         return cls(**_fields_of(cls, data, "refine options"))
 
 
@@ -286,8 +287,9 @@ class PaperOptions:
 
     @classmethod
     def from_dict(cls, data) -> PaperOptions:
-        """The options of a :meth:`to_dict` (read back from JSON): ``from_dict(o.to_dict()) == o``
-        (an expander value given as a list comes back a tuple, as :meth:`to_dict` wrote it)."""
+        """The options of a :meth:`PaperOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o`` (an expander value given as a list comes back a tuple,
+        as :meth:`PaperOptions.to_dict` wrote it)."""
         kw = _fields_of(cls, data, "paper options")
         if isinstance(kw.get("expander"), Mapping):
             kw["expander"] = {k: tuple(v) if isinstance(v, list) else v for k, v in kw["expander"].items()}
@@ -379,7 +381,8 @@ class LatticeOptions:
 
     @classmethod
     def from_dict(cls, data) -> LatticeOptions:
-        """The options of a :meth:`to_dict` (read back from JSON): ``from_dict(o.to_dict()) == o``."""
+        """The options of a :meth:`LatticeOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o``."""
         kw = _fields_of(cls, data, "lattice options")
         if "schedule" in kw:
             schedule = _fields_of(Schedule, kw["schedule"], "schedule")
@@ -493,7 +496,8 @@ class DefaultOptions:
 
     @classmethod
     def from_dict(cls, data) -> DefaultOptions:
-        """The options of a :meth:`to_dict` (read back from JSON): ``from_dict(o.to_dict()) == o``."""
+        """The options of a :meth:`DefaultOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o``."""
         kw = _fields_of(cls, data, "default options")
         if "paper" in kw:
             kw["paper"] = PaperOptions.from_dict(kw["paper"])
@@ -505,7 +509,7 @@ class DefaultOptions:
 
 
 def options_from_dict(data) -> PaperOptions | DefaultOptions:
-    """A planner's options from their :meth:`to_dict` form: :class:`DefaultOptions` (it has the
+    """A planner's options from their ``to_dict()`` form: :class:`DefaultOptions` (it has the
     field ``paper``) or :class:`PaperOptions`. The inverse of ``to_dict`` on JSON read back, so
     a saved plan's options plan again (:meth:`segplan.Plan.load`)."""
     if isinstance(data, Mapping) and "paper" in data:
