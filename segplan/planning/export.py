@@ -5,8 +5,8 @@ columns (name -> array) and the poses ``(x, y, theta)`` of the rear point A, so 
 sampled by :mod:`segplan.planning.trajectory` (or any other) leaves segplan without ROS.
 
 - CSV: one header line of column names (no comment sign), then one line per sample,
-  comma-separated; floats printed with 17 significant digits (``%.17g``: read back, each is
-  the same double), integer columns as integers. ``numpy.genfromtxt(path, delimiter=",",
+  comma-separated; floats written by ``repr`` (the shortest text that reads back as the
+  same double), integer columns as integers. ``numpy.genfromtxt(path, delimiter=",",
   names=True)`` and ``pandas.read_csv(path)`` read it as written.
 - ``nav_msgs/Path`` (ROS 2 field names: ``builtin_interfaces/Time`` is ``{sec, nanosec}``;
   ROS 1 calls them ``secs``, ``nsecs`` and adds ``seq``): a ``header`` with ``frame_id``
@@ -37,8 +37,8 @@ __all__ = ["nav_path", "ros_time", "write_csv", "write_nav_path"]
 def write_csv(path, columns: Mapping[str, np.ndarray]) -> Path:
     """Write ``columns`` (name -> 1-d array, all of one length) to ``path`` as CSV (module docstring).
 
-    Integer arrays are written as integers, every other column as ``%.17g`` floats (exact on
-    reading back). Returns the path written.
+    Integer arrays are written as integers, every other column as floats by ``repr`` (exact
+    on reading back). Returns the path written.
 
     Raises
     ------
@@ -51,10 +51,14 @@ def write_csv(path, columns: Mapping[str, np.ndarray]) -> Path:
     arrays = [np.asarray(columns[n]) for n in names]
     if any(a.ndim != 1 for a in arrays) or len({a.size for a in arrays}) != 1:
         raise ValueError(f"columns must be 1-d arrays of one length, got shapes {[a.shape for a in arrays]}")
-    table = np.column_stack([a.astype(float) for a in arrays])
-    fmt = ["%d" if np.issubdtype(a.dtype, np.integer) else "%.17g" for a in arrays]
+    text = [
+        [str(int(v)) for v in a] if np.issubdtype(a.dtype, np.integer) else [repr(float(v)) for v in a]
+        for a in arrays
+    ]
     path = Path(path)
-    np.savetxt(path, table, fmt=fmt, delimiter=",", header=",".join(names), comments="")
+    with path.open("w", encoding="utf-8") as f:
+        f.write(",".join(names) + "\n")
+        f.writelines(",".join(row) + "\n" for row in zip(*text, strict=True))
     return path
 
 
