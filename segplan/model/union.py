@@ -265,8 +265,9 @@ class Union:
         The ends, ``alpha`` and ``L`` are validated as by ``Union(p0, p1, alpha, L)``, and
         each stored derived value (``d``, ``psi``, ``phi0``, ``phi1``, ``x_end``, the
         coefficients) must agree with the one that constructor computes to ``1e-9`` of its
-        scale (lengths: ``x_end``; angles: 1; ``c_k``: ``x_end^(1 - k)``): rounding passes, an
-        edited or corrupted state does not.
+        scale (lengths: ``x_end``; angles: 1; ``c_k``: ``M x_end^(1 - k)`` with ``M`` the
+        largest of 1 and ``|c_k| x_end^(k - 1)``, the size of the slope's terms): rounding
+        passes, an edited or corrupted state does not.
 
         Raises
         ------
@@ -285,11 +286,12 @@ class Union:
         if not (isinstance(coefficients, Sequence) and len(coefficients) == 3):
             raise ValueError(f"a union's coefficients must be [c1, c2, c3], got {coefficients!r}")
         X = ref.x_end
+        M = max(1.0, *(abs(c) * X ** (k - 1) for k, c in enumerate(ref.coefficients[1:], start=1)))
         scales = {"d": X, "psi": 1.0, "phi0": 1.0, "phi1": 1.0, "x_end": X}
         derived = {name: state[name] for name in scales}
         for k, c in enumerate(coefficients, start=1):
             name = f"c{k}"
-            scales[name], derived[name] = X ** (1 - k), c
+            scales[name], derived[name] = M * X ** (1 - k), c
         expected = {n: getattr(ref, n) for n in ("d", "psi", "phi0", "phi1", "x_end")}
         expected.update(zip(("c1", "c2", "c3"), ref.coefficients[1:], strict=True))
         for name, value in derived.items():

@@ -31,24 +31,28 @@ along ``s``. Limits: ``v <= v_max``; ``|dv/dt| <= a_max``; ``v^2 |kappa| <= a_la
 its wheel already at the first sample's steering angle. *Jump model*: the steering cannot
 step while the robot moves, so at a node whose steering steps by more than ``jump_tol``
 (rounding) the robot stops, re-steers standing for ``|jump| / steer_rate_max`` seconds, and
-drives on; a node's two rows then hold the two stamps. *Profile*: the classic
-forward-backward pass over the samples (forward: ``v_{i+1}^2 <= v_i^2 + 2 a_max ds``,
-backward the same from the end; e.g. Lipp and Boyd 2014, section 2, for the time-optimal
-speed along a fixed path), each sample capped by the speed limits of the intervals on
-either side; between samples the acceleration is constant, so ``v^2`` is linear in ``s``
-and ``v`` lies between its end values. *The caps are exact, not sampled*: for each interval
-the largest ``|kappa|`` (at its ends and at the curvature's stationary points inside,
+drives on; a node's two rows then hold the two stamps (the steering rate while standing is
+``steer_rate_max`` exactly). *Profile*: the classic forward-backward pass over the samples
+(forward from rest, ``v_{i+1}^2 <= v_i^2 + 2 a_max ds_i``; backward from rest at the end,
+``v_i^2 <= v_{i+1}^2 + 2 a_max ds_i``; each sample's speed the least of its cap and both
+passes), each sample capped by the speed limits of the intervals on either side; between
+two samples the acceleration is constant (``a = (v_{i+1}^2 - v_i^2) / (2 ds)``, time
+``2 ds / (v_i + v_{i+1})``), so ``v^2`` is linear in ``s`` and ``v`` lies between its end
+values. *The caps are exact, not sampled*: for each interval the largest ``|kappa|`` (at
+its ends and at the curvature's stationary points inside,
 :meth:`segplan.Union.curvature_stationary`) and an upper bound of ``|d steer / ds| =
 L |kappa_s| / (1 + L^2 kappa^2)`` with ``kappa_s = N / (1 + f'^2)^3``
 (:func:`segplan.model.union.curvature_polynomials`): the largest ``|N|`` over the interval
-over the smallest ``(1 + f'^2)^3`` and ``1 + L^2 kappa^2``, each found at the interval's ends
-and the roots of its polynomial's derivative. Every limit therefore holds everywhere
-between the samples, not only at them (to rounding: tests/test_trajectory.py checks
-``1e-9`` relative on dense resamplings). *Discretisation error*: the time only. The bounds
-over an interval are at least the values at any of its points, so the profile is slower
-than the time-optimal one by ``O(step)`` (the caps tighten by the variation of ``kappa``
-and ``d steer / ds`` over one interval); halving ``step`` shows it (the book's
-measurement: see tests/test_trajectory.py, ``test_time_converges_with_step``).
+over the smallest ``(1 + f'^2)^3`` and ``1 + L^2 kappa^2``, each found at the interval's
+ends and the roots of a polynomial (:func:`interval_bounds`). Every limit therefore holds
+everywhere between the samples, not only at them, to rounding (tests/test_trajectory.py
+checks it on dense resamplings of every union: ``1e-9`` relative for the speed and the
+acceleration, ``1e-6`` where its finite differences enter). *Discretisation error*: in the
+time only, never in a limit. An interval's caps hold for its worst point, so the law is
+slower than the time-optimal one along the same path by ``O(step)``; measured
+(``test_time_converges_with_step``), the total time at the default step of 0.05 m is within
+0.03 % of the time at 6.25 mm on the shipped floor ``turn_around`` (its lattice plan) and
+within 0.001 % on ``fig5_example1``.
 """
 
 from __future__ import annotations
@@ -585,7 +589,7 @@ def time_law(
     v = _profile(ds, cap, a_max)
     dt = _times(ds, v, dwell)
     t = np.concatenate(([0.0], np.cumsum(dt)))
-    t_free = float(np.sum(_times(ds, free, np.zeros(n - 1))))
+    t_free = float(np.cumsum(_times(ds, free, np.zeros(n - 1)))[-1])  # summed as t is
     acc = np.zeros(n)
     moving = ds > 0.0
     acc[:-1][moving] = (v[1:][moving] ** 2 - v[:-1][moving] ** 2) / (2.0 * ds[moving])  # v dv/ds
