@@ -398,6 +398,7 @@ def test_saved_random_chains_load_bit_for_bit(tmp_path_factory, chain, options):
     plan = dataclasses.replace(plan, options=options, planner=planner, iterations=(1, 2))
     record = _round_trip(plan, tmp_path_factory.mktemp("chain"))
     assert record["L"] == unions[0].L and record["max_steer"] is None and record["floor"] is None
+    assert plan.to_dict()["L"] == unions[0].L  # to_dict's keys kept, L added
 
 
 def test_a_corrupted_file_is_refused(plans, tmp_path):

@@ -197,7 +197,8 @@ class Plan:
     options: object = field(default=None, compare=False)
 
     def to_dict(self) -> dict:
-        """Plain-JSON summary (angles in degrees, like scenario files)."""
+        """Plain-JSON summary (angles in degrees, like scenario files; ``L`` the robot length of
+        the unions, None without any). :meth:`save` writes it with what rebuilds the plan."""
         return {
             "cost": self.cost,
             "search_cost": self.search_cost,
@@ -215,6 +216,7 @@ class Plan:
             "refinement": None if self.refinement is None else dataclasses.asdict(self.refinement),
             "planner": self.planner,
             "options": None if self.options is None else self.options.to_dict(),
+            "L": self.unions[0].L if self.unions else None,
         }
 
     # -- the plan as a controller reads it (segplan.planning.trajectory) -----------------------
