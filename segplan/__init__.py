@@ -16,6 +16,8 @@ The API by concept (the book's chapter "API reference" groups it by the paper's 
 * planning: ``plan``, ``plan_scenario``, ``Plan``, ``NoPathError``, ``refine``,
   ``Refinement``, and the options objects ``PaperOptions``, ``DefaultOptions``,
   ``LatticeOptions``, ``RefineOptions`` (every tuning value of a planner, with its provenance);
+  a plan's trajectory for a controller and its file: ``Plan.poses``, ``Plan.trajectory``,
+  ``Plan.facts``, ``Plan.save``, ``Plan.load`` (beyond the paper, :mod:`segplan.planning.trajectory`);
 * measure: ``measure_path``, ``measure_scenario_path``, ``plan_poses``, ``plan_clearance``,
   ``PathMetrics``.
 
