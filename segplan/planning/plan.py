@@ -411,6 +411,7 @@ def _field(record: Mapping, name: str, kinds, what: str):
 
 
 def _finite(v) -> bool:
+    """A finite number, not a bool."""
     return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
 
 
@@ -434,11 +435,7 @@ def plan_from_record(record: Mapping) -> Plan:
     exact = _field(record, "exact", Mapping, "a mapping of nodes and unions")
     nodes = []
     for i, p in enumerate(_field(exact, "nodes", list, "a list")):
-        ok = isinstance(p, list) and len(p) == 3
-        ok = ok and all(
-            isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) for v in p
-        )
-        if not ok:
+        if not (isinstance(p, list) and len(p) == 3 and all(_finite(v) for v in p)):
             raise ValueError(f"the saved plan's node {i} must be [x, y, theta] of finite numbers, got {p!r}")
         nodes.append(Pose(*(float(v) for v in p)))
     unions = tuple(Union.from_state(u) for u in _field(exact, "unions", list, "a list"))
