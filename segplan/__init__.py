@@ -16,7 +16,10 @@ The API by concept (the book's chapter "API reference" groups it by the paper's 
 * planning: ``plan``, ``plan_scenario``, ``Plan``, ``NoPathError``, ``refine``,
   ``Refinement``, and the options objects ``PaperOptions``, ``DefaultOptions``,
   ``LatticeOptions``, ``RefineOptions`` (every tuning value of a planner, with its provenance);
-* measure: ``measure_path``, ``measure_scenario_path``, ``plan_poses``, ``PathMetrics``.
+  a plan's trajectory for a controller and its file: ``Plan.poses``, ``Plan.trajectory``,
+  ``Plan.facts``, ``Plan.save``, ``Plan.load`` (beyond the paper, :mod:`segplan.planning.trajectory`);
+* measure: ``measure_path``, ``measure_scenario_path``, ``plan_poses``, ``plan_clearance``,
+  ``PathMetrics``.
 
 The house, every dependency pointing down (enforced by the import-linter contracts in
 ``pyproject.toml``, checked by ``tests/test_layers.py``)::
@@ -27,8 +30,9 @@ The house, every dependency pointing down (enforced by the import-linter contrac
     floor/                         geometry, decompose, sweep, collision, scenario, random_floors
     model/                         pose, union, romberg, cost, frame, frame_exact, derivation, constants
 
-    planning/:  api > default > refine | stages > paper/ | lattice/ > context
-                > links | options > schedule > validity | plan | dubins
+    planning/:  api > default > refine | stages > paper/ | lattice/ > context | plan
+                > links | options > schedule | trajectory
+                > validity | dubins | checks | export
     paper/ (the paper's search):  search > problem | expansion > bisectrix
     lattice/ (beyond the paper):  search > escape | shortcut > astar > approach | guide
                                   > edges | clearance | primitives > frame
@@ -58,7 +62,7 @@ from .planning.api import plan, plan_scenario
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions, RefineOptions
 from .planning.plan import NoPathError, Plan, Refinement
 from .planning.refine import refine
-from .viz.metrics import PathMetrics, measure_path, measure_scenario_path, plan_poses
+from .viz.metrics import PathMetrics, measure_path, measure_scenario_path, plan_clearance, plan_poses
 
 __version__ = "0.1.0"
 
@@ -70,7 +74,7 @@ __all__ += ["random_world", "save_scenario", "shipped_scenarios"]
 __all__ += ["convex_pieces"]
 __all__ += ["NoPathError", "Plan", "plan", "plan_scenario"]
 __all__ += ["longd", "longd_approx"]
-__all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses"]
+__all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses", "plan_clearance"]
 __all__ += ["optimal_alpha", "optimal_alpha_intrinsic"]
 __all__ += ["Refinement", "refine"]
 __all__ += ["DefaultOptions", "LatticeOptions", "PaperOptions", "RefineOptions"]

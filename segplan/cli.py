@@ -1,5 +1,9 @@
 """Command line: ``segplan plan SCENARIO [--heuristic a|b|c] [--refine] [--out P.png] [--animate P.gif]``.
 
+``--poses FILE.csv`` and ``--trajectory FILE.csv`` (with ``--v-max``, ``--a-max``,
+``--a-lat-max``, ``--steer-rate-max``, ``--step``) write the plan sampled and timed
+(:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`).
+
 Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario file or the
 name of a shipped scenario (``segplan plan fig5_example1``).
 
@@ -23,8 +27,9 @@ from .floor.scenario import ScenarioError, load_scenario, shipped_scenarios
 from .planning.api import plan_scenario
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
+from .planning.trajectory import DEFAULT_STEP
 
-__all__ = ["EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
+__all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
 
 EXIT_NO_PATH = 1
 EXIT_BAD_INPUT = 2
@@ -68,6 +73,7 @@ examples:
   segplan plan scenarios/fig5_example1.json
   segplan plan scenarios/fig5_example1.json --heuristic c --out fig5.png
   segplan plan scenarios/turn_around.json --json
+  segplan plan fig5_example1 --poses fig5_poses.csv --trajectory fig5_traj.csv --v-max 1.5
 """
 
 
@@ -160,7 +166,109 @@ def build_parser() -> argparse.ArgumentParser:
         help="give up after S seconds; the refinement stops there too "
         f"(default {DefaultOptions.time_limit:g})",
     )
+    _add_trajectory_options(p)
     return parser
+
+
+# -- trajectories out (issue 27): --poses, --trajectory and the limits --------------------------
+#: Defaults of the time law's limits on the command line: set by hand (issue 27) for a slow
+#: indoor vehicle of the book's size (L = 1.2 m); not measured. The library has none.
+CLI_LIMITS = {"v_max": 1.0, "a_max": 0.5, "a_lat_max": 0.5, "steer_rate_max_deg": 30.0}
+
+
+def _positive(text: str) -> float:
+    """An argparse type: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
+    return value
+
+
+def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
+    """``--poses``, ``--trajectory`` and the time law's limits (:meth:`segplan.Plan.trajectory`)."""
+    g = p.add_argument_group(
+        "trajectories out",
+        "samples every --step m along the rear point's path, as CSV; a node where two unions "
+        "meet is listed once per union (each side's curvature and steering angle)",
+    )
+    g.add_argument(
+        "--poses",
+        metavar="FILE.csv",
+        help="write the poses: s,x,y,theta,x_front,y_front,kappa,steer,union (m, rad, 1/m)",
+    )
+    g.add_argument(
+        "--trajectory",
+        metavar="FILE.csv",
+        help="write a time law within the limits below, from rest to rest: t,s,v,a and the pose "
+        "columns (s, m/s, m/s^2); the robot stops to re-steer where the steering jumps at a node. "
+        "Prints the total time and what the jumps cost",
+    )
+    g.add_argument(
+        "--step",
+        type=_positive,
+        default=DEFAULT_STEP,
+        metavar="M",
+        help=f"largest sample spacing along the rear path, m (default {DEFAULT_STEP:g})",
+    )
+    for name, unit, what in (
+        ("v_max", "m/s", "speed of the rear point"),
+        ("a_max", "m/s^2", "acceleration and braking"),
+        ("a_lat_max", "m/s^2", "lateral acceleration"),
+    ):
+        g.add_argument(
+            "--" + name.replace("_", "-"),
+            type=_positive,
+            default=CLI_LIMITS[name],
+            metavar=unit.upper().replace("/", "_").replace("^2", "2"),
+            help=f"largest {what}, {unit} (default {CLI_LIMITS[name]:g})",
+        )
+    g.add_argument(
+        "--steer-rate-max",
+        type=_positive,
+        default=CLI_LIMITS["steer_rate_max_deg"],
+        metavar="DEG_S",
+        help=f"largest steering rate, deg/s (default {CLI_LIMITS['steer_rate_max_deg']:g})",
+    )
+
+
+def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
+    """Write ``--poses`` and ``--trajectory``; their JSON entries and text lines. OSError and
+    ValueError propagate to :func:`main`."""
+    out: dict = {}
+    lines: list[str] = []
+    if args.poses:
+        samples = result.poses(args.step)
+        samples.to_csv(args.poses)
+        out["poses"] = {"file": args.poses, "samples": len(samples), "step": args.step}
+        lines.append(f"poses       {args.poses} ({len(samples)} samples, every {args.step:g} m or less)")
+    if args.trajectory:
+        law = result.trajectory(
+            args.v_max, args.a_max, args.a_lat_max, math.radians(args.steer_rate_max), step=args.step
+        )
+        law.to_csv(args.trajectory)
+        out["trajectory"] = {
+            "file": args.trajectory,
+            "samples": len(law),
+            "total_time": law.total_time,
+            "jump_time": law.jump_time,
+            "dwell_time": law.dwell_time,
+            "jumps": law.jumps,
+            "limits": {
+                "v_max": law.v_max,
+                "a_max": law.a_max,
+                "a_lat_max": law.a_lat_max,
+                "steer_rate_max_deg": args.steer_rate_max,
+            },
+        }
+        lines += [
+            f"trajectory  {args.trajectory} ({len(law)} samples)",
+            f"  time      {law.total_time:.2f} s from rest to rest, of which {law.jump_time:.2f} s for "
+            f"{law.jumps} steering jumps ({law.dwell_time:.2f} s re-steering standing)",
+        ]
+    return out, lines
 
 
 def _format_plan(result: Plan, name: str) -> str:
@@ -261,10 +369,18 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         print(f"segplan: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    try:
+        written, written_lines = _trajectories_out(args, result)
+    except OSError as exc:
+        print(f"segplan: error: cannot write {exc.filename}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ValueError as exc:
+        print(f"segplan: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
     if args.json:
-        print(json.dumps({"scenario": name, "found": True, **result.to_dict()}, indent=2))
+        print(json.dumps({"scenario": name, "found": True, **result.to_dict(), **written}, indent=2))
     else:
-        print(_format_plan(result, name))
+        print("\n".join([_format_plan(result, name), *written_lines]))
     if args.out:
         try:
             _draw(

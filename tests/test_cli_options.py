@@ -14,12 +14,14 @@ back, where the printed output alone cannot show an option's effect.
 import json
 import sys
 
+import numpy as np
 import pytest
 
 import segplan
 import segplan.cli as cli
 from segplan.cli import EXIT_BAD_INPUT, EXIT_NO_PATH, build_parser, main
 from segplan.floor.scenario import load_scenario, with_clearance
+from segplan.planning.trajectory import POSE_COLUMNS, TRAJECTORY_COLUMNS
 from segplan.viz.metrics import measure_scenario_path, plan_poses
 
 #: Each argument of ``segplan plan`` (argparse ``dest``) and the test that shows it acts.
@@ -255,3 +257,79 @@ def test_time_limit_message_names_the_users_limit(capsys):
     status, failed = run_json(capsys, "fig6_example2", "--time-limit", "1e-6")
     assert status == EXIT_NO_PATH and failed["reason"] == "time"
     assert "time_limit=1e-06" in failed["message"], failed["message"]
+
+
+# -- trajectories out (issue 27): the options of --poses and --trajectory --------------------------
+OPTION_TESTS.update(
+    {
+        "poses": "test_poses_writes_the_samples",
+        "trajectory": "test_trajectory_writes_the_time_law_and_prints_its_time",
+        "step": "test_step_sets_the_spacing",
+        "v_max": "test_v_max_caps_the_speed",
+        "a_max": "test_a_max_caps_the_acceleration",
+        "a_lat_max": "test_a_lat_max_caps_the_lateral_acceleration",
+        "steer_rate_max": "test_steer_rate_max_sets_the_re_steering_time",
+    }
+)
+
+
+def _law(capsys, tmp_path, *args):
+    """``segplan plan fig5_example1 --trajectory FILE ARGS --json``: the JSON and the CSV table."""
+    path = tmp_path / "law.csv"
+    status, data = run_json(capsys, "fig5_example1", "--trajectory", str(path), *args)
+    assert status == 0
+    return data, np.genfromtxt(path, delimiter=",", names=True)
+
+
+def test_poses_writes_the_samples(capsys, tmp_path):
+    path = tmp_path / "poses.csv"
+    status, data = run_json(capsys, "fig5_example1", "--poses", str(path))
+    table = np.genfromtxt(path, delimiter=",", names=True)
+    assert status == 0 and table.dtype.names == POSE_COLUMNS
+    assert data["poses"]["samples"] == table.size and "trajectory" not in data
+    assert np.all(np.diff(table["s"]) <= 0.05 + 1e-12)
+
+
+def test_trajectory_writes_the_time_law_and_prints_its_time(capsys, tmp_path):
+    data, table = _law(capsys, tmp_path)
+    assert table.dtype.names == TRAJECTORY_COLUMNS
+    law = data["trajectory"]
+    assert (
+        law["total_time"] == table["t"][-1] and 0 < law["dwell_time"] < law["jump_time"] < law["total_time"]
+    )
+    assert main(["plan", "fig5_example1", "--trajectory", str(tmp_path / "b.csv")]) == 0
+    out = capsys.readouterr().out
+    assert f"{law['total_time']:.2f} s from rest to rest, of which {law['jump_time']:.2f} s" in out
+
+
+def test_step_sets_the_spacing(capsys, tmp_path):
+    coarse, fine = (_law(capsys, tmp_path, "--step", step)[1] for step in ("0.2", "0.02"))
+    assert fine.size > 5 * coarse.size
+    assert np.diff(fine["s"]).max() <= 0.02 + 1e-12 < np.diff(coarse["s"]).max() <= 0.2 + 1e-12
+
+
+def test_v_max_caps_the_speed(capsys, tmp_path):
+    slow, table = _law(capsys, tmp_path, "--v-max", "0.3")
+    fast, _ = _law(capsys, tmp_path, "--v-max", "2")
+    assert table["v"].max() <= 0.3 * (1 + 1e-12) and slow["trajectory"]["limits"]["v_max"] == 0.3
+    assert slow["trajectory"]["total_time"] > fast["trajectory"]["total_time"]
+
+
+def test_a_max_caps_the_acceleration(capsys, tmp_path):
+    data, table = _law(capsys, tmp_path, "--a-max", "0.1")
+    assert np.abs(table["a"]).max() <= 0.1 * (1 + 1e-9) and data["trajectory"]["limits"]["a_max"] == 0.1
+
+
+def test_a_lat_max_caps_the_lateral_acceleration(capsys, tmp_path):
+    _, table = _law(capsys, tmp_path, "--a-lat-max", "0.05", "--v-max", "5")
+    assert np.max(table["v"] ** 2 * np.abs(table["kappa"])) <= 0.05 * (1 + 1e-9)
+    _, loose = _law(capsys, tmp_path, "--a-lat-max", "5", "--v-max", "5")
+    assert np.max(loose["v"] ** 2 * np.abs(loose["kappa"])) > 0.05
+
+
+def test_steer_rate_max_sets_the_re_steering_time(capsys, tmp_path):
+    """Re-steering standing takes sum |jump| / rate: half the rate, twice the dwell."""
+    quick, _ = _law(capsys, tmp_path, "--steer-rate-max", "60")
+    slow, _ = _law(capsys, tmp_path, "--steer-rate-max", "30")
+    assert slow["trajectory"]["dwell_time"] == pytest.approx(2 * quick["trajectory"]["dwell_time"], rel=1e-12)
+    assert slow["trajectory"]["limits"]["steer_rate_max_deg"] == 30

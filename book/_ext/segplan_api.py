@@ -90,7 +90,7 @@ GROUPS: list[tuple[str, str, list[str]]] = [
         "Beyond the paper: measuring any planner's path",
         "One yardstick for segplan's plans and other planners' paths (front and rear length, "
         "curvature, clearance, a dense collision check).",
-        ["measure_path", "measure_scenario_path", "plan_poses", "PathMetrics"],
+        ["measure_path", "measure_scenario_path", "plan_poses", "plan_clearance", "PathMetrics"],
     ),
 ]
 

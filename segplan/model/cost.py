@@ -50,6 +50,7 @@ __all__ = [
     "longd_gauss_intrinsic",
     "longd_integrand",
     "longd_intrinsic",
+    "partial_lengths",
 ]
 
 
@@ -137,6 +138,36 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
     if full_output:
         return _scalar_or_array(value), _scalar_or_array(error)
     return _scalar_or_array(value)
+
+
+def partial_lengths(x, c1: float, c2: float, c3: float, L: float, rtol: float = 1e-10) -> np.ndarray:
+    """Path lengths of one union from its start to the frame abscissae ``x``: [1] on ``[0, x]``.
+
+    The integrand of [1] (:func:`longd_integrand`) integrated by the same Romberg rule
+    (:func:`segplan.model.romberg.romberg`) over ``[0, x]`` instead of the whole span:
+    with ``L`` the robot's length, the length of the front wheel's path up to ``x``
+    (LONGD of the union at ``x = x_end``); with ``L = 0``, the arc length of the rear point
+    A, ``int_0^x sqrt(1 + f'^2) dx`` (the "rear length" of :func:`segplan.studies.approx.exact_split`).
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae in the union's alpha frame, in ``[0, x_end]``.
+    c1, c2, c3 : float
+        The cubic's coefficients (:func:`segplan.model.union.cubic_coefficients`).
+    L : float
+        Robot length (>= 0; 0: the rear point's arc length).
+    rtol : float
+        Romberg's relative tolerance, met by every abscissa at once.
+
+    Returns
+    -------
+    ndarray
+        Lengths, shaped as ``x``.
+    """
+    x = np.asarray(x, dtype=float)
+    value, _ = romberg(_front_speed(x, c1, c2, c3, L), 0.0, 1.0, rtol=rtol)  # int_0^1 x F(x tau) dtau
+    return value
 
 
 def chain_longd(unions: Iterable[Union], rtol: float, *, from_poses: bool = False) -> float:

@@ -19,7 +19,7 @@ rear path: "the robot orientation ... is always tangent to trajectories").
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -29,6 +29,7 @@ __all__ = [
     "Union",
     "chord_slopes",
     "cubic_coefficients",
+    "curvature_polynomials",
     "curvature_samples",
     "exceeds_curvature",
     "peak_curvature",
@@ -61,7 +62,28 @@ def cubic_coefficients(d, phi0, phi1, alpha):
     return X, c1, c2, c3
 
 
-# -- the rear path's curvature at sample abscissae ------------------------------------------
+# -- the rear path's curvature: its polynomials, and samples --------------------------------
+def curvature_polynomials(c1: float, c2: float, c3: float):
+    """The polynomials in ``x`` behind the rear path's curvature and its derivative.
+
+    With ``f(x) = c1 x + c2 x^2 + c3 x^3`` (:func:`cubic_coefficients`) the curvature is
+    ``kappa = f'' / (1 + f'^2)^(3/2)`` (:func:`peak_curvature`) and its derivative
+    ``d kappa / dx = N / (1 + f'^2)^(5/2)`` with ``N = f''' (1 + f'^2) - 3 f' f''^2``, a
+    quartic: its real roots are the stationary points of the curvature
+    (:meth:`Union.max_curvature`). Along the arc length ``s`` of the rear path
+    (``ds / dx = (1 + f'^2)^(1/2)``), ``d kappa / ds = N / (1 + f'^2)^3``.
+
+    Returns
+    -------
+    fp, fpp, crit : numpy.polynomial.Polynomial
+        ``f'``, ``f''`` and ``N``.
+    """
+    p1 = np.polynomial.Polynomial([c1, 2 * c2, 3 * c3])  # f'
+    p2 = np.polynomial.Polynomial([2 * c2, 6 * c3])  # f''
+    crit = 6 * c3 * (1 + p1**2) - 3 * p1 * p2**2  # N = f''' (1 + f'^2) - 3 f' f''^2
+    return p1, p2, crit
+
+
 def curvature_samples(X, c1, c2, c3, s):
     """Abscissae ``x = X s`` and the cubic's ``f'(x)``, ``f''(x)`` there (vectorised).
 
@@ -203,6 +225,94 @@ class Union:
     def __repr__(self) -> str:
         return f"Union(p0={tuple(self.p0)}, p1={tuple(self.p1)}, alpha={self.alpha:.6g}, L={self.L:.6g})"
 
+    # -- a value: equality, hashing, its state -------------------------------------------
+    def _values(self) -> tuple:
+        return tuple(getattr(self, name) for name in Union.__slots__)
+
+    def __eq__(self, other) -> bool:
+        """Equal unions hold equal values in every slot (ends, ``alpha``, ``L``, the intrinsic
+        parameters, span and coefficients): two unions that sample alike to the last bit."""
+        if not isinstance(other, Union):
+            return NotImplemented
+        return self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
+
+    def __reduce__(self):
+        return (_restore, (self._values(),))
+
+    def state(self) -> dict:
+        """Every value the union holds, as plain floats (JSON-ready; ``repr`` round-trips them).
+
+        ``Union.from_state(u.state()) == u`` bit for bit, whichever way ``u`` was built
+        (``Union(...)`` with numpy, :meth:`from_intrinsic` with ``math``: the two may differ
+        in the last bit, and a plan's cost and sampling depend on the values it holds).
+        Keys: ``p0``, ``p1`` (lists ``[x, y, theta]``), ``alpha``, ``L``, ``d``, ``psi``,
+        ``phi0``, ``phi1``, ``x_end`` and ``coefficients`` (``[c1, c2, c3]``, ``c0 = 0``).
+        """
+        return {
+            "p0": [float(v) for v in self.p0],
+            "p1": [float(v) for v in self.p1],
+            **{name: float(getattr(self, name)) for name in _SCALARS},
+            "coefficients": [float(c) for c in self.coefficients[1:]],
+        }
+
+    @classmethod
+    def from_state(cls, state: Mapping) -> Union:
+        """The union of a :meth:`state`, its values kept exactly, after a check.
+
+        The ends, ``alpha`` and ``L`` are validated as by ``Union(p0, p1, alpha, L)``, and
+        each stored derived value (``d``, ``psi``, ``phi0``, ``phi1``, ``x_end``, the
+        coefficients) must agree with the one that constructor computes to ``1e-9`` of its
+        scale (lengths: ``x_end``; angles: 1; ``c_k``: ``M x_end^(1 - k)`` with ``M`` the
+        largest of 1 and ``|c_k| x_end^(k - 1)``, the size of the slope's terms): rounding
+        passes, an edited or corrupted state does not.
+
+        Raises
+        ------
+        ValueError
+            A missing or malformed value, or one that disagrees with the ends and ``alpha``,
+            named.
+        """
+        if not isinstance(state, Mapping):
+            raise ValueError(f"a union's state must be a mapping, got {type(state).__name__}")
+        names = ("p0", "p1", "alpha", "L", "d", "psi", "phi0", "phi1", "x_end", "coefficients")
+        missing = [n for n in names if n not in state]
+        if missing:
+            raise ValueError(f"a union's state lacks {', '.join(missing)}")
+        ref = cls(state["p0"], state["p1"], state["alpha"], state["L"])  # validates ends, alpha, L
+        coefficients = state["coefficients"]
+        if not (isinstance(coefficients, Sequence) and len(coefficients) == 3):
+            raise ValueError(f"a union's coefficients must be [c1, c2, c3], got {coefficients!r}")
+        X = ref.x_end
+        M = max(1.0, *(abs(c) * X ** (k - 1) for k, c in enumerate(ref.coefficients[1:], start=1)))
+        scales = {"d": X, "psi": 1.0, "phi0": 1.0, "phi1": 1.0, "x_end": X}
+        derived = {name: state[name] for name in scales}
+        for k, c in enumerate(coefficients, start=1):
+            name = f"c{k}"
+            scales[name], derived[name] = M * X ** (1 - k), c
+        expected = {n: getattr(ref, n) for n in ("d", "psi", "phi0", "phi1", "x_end")}
+        expected.update(zip(("c1", "c2", "c3"), ref.coefficients[1:], strict=True))
+        for name, value in derived.items():
+            if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+                raise ValueError(f"a union's {name} must be a finite number, got {value!r}")
+            if abs(value - expected[name]) > 1e-9 * scales[name]:
+                raise ValueError(
+                    f"a union's stored {name}={value!r} disagrees with its ends and alpha "
+                    f"({expected[name]!r})"
+                )
+        return _restore(
+            (
+                ref.p0,
+                ref.p1,
+                ref.alpha,
+                ref.L,
+                *(float(derived[n]) for n in ("d", "psi", "phi0", "phi1", "x_end")),
+                (0.0, *(float(c) for c in coefficients)),
+            )
+        )
+
     # -- the cubic in its own frame ------------------------------------------------
     @property
     def frame_angle(self) -> float:
@@ -233,17 +343,26 @@ class Union:
     def max_curvature(self) -> float:
         """Largest ``|curvature|`` of the rear path over the union, found exactly.
 
-        Interior extrema solve ``f''' (1 + f'^2) - 3 f' f''^2 = 0``, a quartic in x.
+        Interior extrema solve ``f''' (1 + f'^2) - 3 f' f''^2 = 0``, a quartic in x
+        (:meth:`curvature_stationary`).
+        """
+        xs = [0.0, self.x_end, *self.curvature_stationary()]
+        return float(np.max(np.abs(self.curvature(np.array(xs)))))
+
+    def curvature_stationary(self) -> list[float]:
+        """Frame abscissae in ``(0, x_end)`` where the rear path's curvature is stationary.
+
+        The real roots of the quartic ``N = f''' (1 + f'^2) - 3 f' f''^2``
+        (:func:`curvature_polynomials`; imaginary parts below 1e-9 count as real), in
+        numpy's order; none if ``N`` vanishes identically (a straight union). The
+        curvature's extrema over any sub-interval lie at its ends or at these points.
         """
         _, c1, c2, c3 = self.coefficients
-        p1 = np.polynomial.Polynomial([c1, 2 * c2, 3 * c3])
-        p2 = np.polynomial.Polynomial([2 * c2, 6 * c3])
-        crit = 6 * c3 * (1 + p1**2) - 3 * p1 * p2**2
-        xs = [0.0, self.x_end]
-        if np.any(crit.coef != 0):
-            roots = crit.roots()
-            xs += [r.real for r in roots if abs(r.imag) < 1e-9 and 0.0 < r.real < self.x_end]
-        return float(np.max(np.abs(self.curvature(np.array(xs)))))
+        _, _, crit = curvature_polynomials(c1, c2, c3)
+        if not np.any(crit.coef != 0):
+            return []
+        roots = crit.roots()
+        return [r.real for r in roots if abs(r.imag) < 1e-9 and 0.0 < r.real < self.x_end]
 
     # -- world coordinates ---------------------------------------------------------
     def xs(self, n: int = 101) -> np.ndarray:
@@ -273,3 +392,15 @@ class Union:
         x = self.xs(n)
         h = self.heading(x)
         return self.to_world(x, self.f(x)) + self.L * np.stack((np.cos(h), np.sin(h)), axis=-1)
+
+
+#: The scalar slots of a union's :meth:`Union.state`, in order.
+_SCALARS = ("alpha", "L", "d", "psi", "phi0", "phi1", "x_end")
+
+
+def _restore(values: tuple) -> Union:
+    """A union holding ``values`` in its slots' order, unchecked (pickle; :meth:`Union.from_state`)."""
+    u = object.__new__(Union)
+    for name, value in zip(Union.__slots__, values, strict=True):
+        object.__setattr__(u, name, value)
+    return u

@@ -18,7 +18,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from .plan import check_option
+from .checks import check_option
 from .schedule import SCHEDULE, Schedule
 
 __all__ = [
@@ -32,6 +32,7 @@ __all__ = [
     "RefineOptions",
     "check_choice",
     "check_flag",
+    "options_from_dict",
     "refine_options",
 ]
 
@@ -62,6 +63,18 @@ def check_flag(value, name: str) -> bool:
 def _check_expansions(value) -> int:
     """A search's ``max_expansions``: an integer >= 1 (:func:`segplan.planning.plan.check_limits`'s rule)."""
     return check_option(value, "max_expansions", 1, integer=True, lo_ok=True)
+
+
+def _fields_of(cls, data, name: str) -> dict:
+    """``data`` (a ``to_dict()`` read back) as keyword arguments of ``cls``: a mapping with no
+    unknown key, else ValueError naming ``name`` and the key."""
+    if not isinstance(data, Mapping):
+        raise ValueError(f"{name} must be a mapping of {cls.__name__} fields, got {type(data).__name__}")
+    known = {f.name for f in dataclasses.fields(cls)}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise ValueError(f"{name} has no field {', '.join(map(repr, unknown))} ({cls.__name__})")
+    return dict(data)
 
 
 def _set(obj, name: str, value) -> None:
@@ -150,6 +163,12 @@ class RefineOptions:
         out = dataclasses.asdict(self)
         out["moves"] = [list(m) for m in self.moves]
         return out
+
+    @classmethod
+    def from_dict(cls, data) -> RefineOptions:
+        """The options of a :meth:`RefineOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o``."""
+        return cls(**_fields_of(cls, data, "refine options"))
 
 
 def refine_options(refine, default: RefineOptions | None) -> RefineOptions | None:
@@ -266,6 +285,18 @@ class PaperOptions:
         out["refine"] = None if self.refine is None else self.refine.to_dict()
         return out
 
+    @classmethod
+    def from_dict(cls, data) -> PaperOptions:
+        """The options of a :meth:`PaperOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o`` (an expander value given as a list comes back a tuple,
+        as :meth:`PaperOptions.to_dict` wrote it)."""
+        kw = _fields_of(cls, data, "paper options")
+        if isinstance(kw.get("expander"), Mapping):
+            kw["expander"] = {k: tuple(v) if isinstance(v, list) else v for k, v in kw["expander"].items()}
+        if kw.get("refine") is not None:
+            kw["refine"] = RefineOptions.from_dict(kw["refine"])
+        return cls(**kw)
+
 
 @dataclass(frozen=True)
 class LatticeOptions:
@@ -347,6 +378,18 @@ class LatticeOptions:
     def to_dict(self) -> dict:
         """Plain-JSON form."""
         return dataclasses.asdict(self)
+
+    @classmethod
+    def from_dict(cls, data) -> LatticeOptions:
+        """The options of a :meth:`LatticeOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o``."""
+        kw = _fields_of(cls, data, "lattice options")
+        if "schedule" in kw:
+            schedule = _fields_of(Schedule, kw["schedule"], "schedule")
+            if isinstance(schedule.get("grid_margin"), list):
+                schedule["grid_margin"] = tuple(schedule["grid_margin"])
+            kw["schedule"] = Schedule(**schedule)
+        return cls(**kw)
 
 
 @dataclass(frozen=True)
@@ -455,3 +498,25 @@ class DefaultOptions:
         out["lattice"] = self.lattice.to_dict()
         out["refine"] = None if self.refine is None else self.refine.to_dict()
         return out
+
+    @classmethod
+    def from_dict(cls, data) -> DefaultOptions:
+        """The options of a :meth:`DefaultOptions.to_dict` read back from JSON:
+        ``from_dict(o.to_dict()) == o``."""
+        kw = _fields_of(cls, data, "default options")
+        if "paper" in kw:
+            kw["paper"] = PaperOptions.from_dict(kw["paper"])
+        if "lattice" in kw:
+            kw["lattice"] = LatticeOptions.from_dict(kw["lattice"])
+        if kw.get("refine") is not None:
+            kw["refine"] = RefineOptions.from_dict(kw["refine"])
+        return cls(**kw)
+
+
+def options_from_dict(data) -> PaperOptions | DefaultOptions:
+    """A planner's options from their ``to_dict()`` form: :class:`DefaultOptions` (it has the
+    field ``paper``) or :class:`PaperOptions`. The inverse of ``to_dict`` on JSON read back, so
+    a saved plan's options plan again (:meth:`segplan.Plan.load`)."""
+    if isinstance(data, Mapping) and "paper" in data:
+        return DefaultOptions.from_dict(data)
+    return PaperOptions.from_dict(data)

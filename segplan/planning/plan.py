@@ -1,22 +1,46 @@
 """What a search returns: a :class:`Plan`, or a :class:`NoPathError`; and a plan's :class:`Refinement`.
 
-Types only (section "Results. Graph-search" of Campoy et al. (1989) describes the plan:
-consecutive nodes joined by cubic unions, its cost the sum of their LONGD [1]). They sit
-below the search (:mod:`segplan.planning.paper.search`) and the refinement
-(:mod:`segplan.planning.refine`), so
-neither imports the other.
+Section "Results. Graph-search" of Campoy et al. (1989) describes the plan: consecutive
+nodes joined by cubic unions, its cost the sum of their LONGD [1]. These types sit below
+the search (:mod:`segplan.planning.paper.search`) and the refinement
+(:mod:`segplan.planning.refine`), so neither imports the other; above the options a plan
+records (:mod:`segplan.planning.options`) and the trajectory it offers
+(:mod:`segplan.planning.trajectory`: :meth:`Plan.poses`, :meth:`Plan.trajectory`,
+:meth:`Plan.facts`).
+
+A plan saved by :meth:`Plan.save` (beyond the paper, issue 27) is a JSON file that
+:meth:`Plan.load` turns back into an equal plan, bit for bit (:func:`plan_record`).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 
+from ..floor.scenario import Scenario
 from ..model.cost import chain_longd
+from ..model.pose import Pose
+from ..model.union import Union
+from .checks import check_limits, check_option
+from .options import options_from_dict
+from .trajectory import (
+    DEFAULT_STEP,
+    JUMP_TOL,
+    PathSamples,
+    PlanFacts,
+    Trajectory,
+    plan_facts,
+    sample_path,
+    time_law,
+)
 
 __all__ = [
+    "PLAN_FORMAT",
+    "PLAN_FORMAT_VERSION",
     "PLAN_RTOL",
     "NoPathError",
     "Plan",
@@ -25,12 +49,17 @@ __all__ = [
     "check_option",
     "direct_plan",
     "lattice_plan",
+    "plan_from_record",
+    "plan_record",
     "union_longd",
     "unions_longd",
 ]
 
 #: Relative tolerance of the Romberg integration [1] behind a returned plan's ``cost``.
 PLAN_RTOL = 1e-8
+#: The name and version of the format of a saved plan (:func:`plan_record`).
+PLAN_FORMAT = "segplan-plan"
+PLAN_FORMAT_VERSION = 1
 
 
 def union_longd(u) -> float:
@@ -42,37 +71,6 @@ def union_longd(u) -> float:
 def unions_longd(unions: Iterable) -> float:
     """A chain's LONGD: the sum of :func:`union_longd` over ``unions`` (0 for none)."""
     return chain_longd(unions, PLAN_RTOL)
-
-
-def check_option(
-    value, name: str, lo: float, *, integer: bool = False, allow_none: bool = False, lo_ok: bool = False
-):
-    """A search option: a finite number above ``lo`` (at least ``lo`` with ``lo_ok``),
-    an integer if ``integer``, or None if ``allow_none``. Returns it as int or float.
-
-    The one validator of the planners' numeric options (:func:`segplan.plan_scenario`,
-    :func:`segplan.planning.lattice.search.lattice_search`). Raises ValueError naming ``name``.
-    """
-    if value is None and allow_none:
-        return None
-    ok = not isinstance(value, bool) and isinstance(value, int | float) and math.isfinite(value)
-    ok = ok and (value >= lo if lo_ok else value > lo)
-    if ok and integer:
-        ok = int(value) == value
-    if not ok:
-        kind = "an integer" if integer else "a finite number"
-        raise ValueError(f"{name} must be {kind} {'>=' if lo_ok else '>'} {lo}, got {value!r}")
-    return int(value) if integer else float(value)
-
-
-def check_limits(max_expansions, time_limit) -> tuple[int | None, float]:
-    """The search limits of every planner: ``max_expansions`` an integer >= 1 (or None: the
-    planner's default), ``time_limit`` a positive number of seconds. Raises ValueError
-    naming the argument (:func:`check_option`)."""
-    return (
-        check_option(max_expansions, "max_expansions", 1, integer=True, allow_none=True, lo_ok=True),
-        check_option(time_limit, "time_limit", 0.0),
-    )
 
 
 @dataclass(frozen=True)
@@ -199,7 +197,8 @@ class Plan:
     options: object = field(default=None, compare=False)
 
     def to_dict(self) -> dict:
-        """Plain-JSON summary (angles in degrees, like scenario files)."""
+        """Plain-JSON summary (angles in degrees, like scenario files; ``L`` the robot length of
+        the unions, None without any). :meth:`save` writes it with what rebuilds the plan."""
         return {
             "cost": self.cost,
             "search_cost": self.search_cost,
@@ -217,7 +216,106 @@ class Plan:
             "refinement": None if self.refinement is None else dataclasses.asdict(self.refinement),
             "planner": self.planner,
             "options": None if self.options is None else self.options.to_dict(),
+            "L": self.unions[0].L if self.unions else None,
         }
+
+    # -- the plan as a controller reads it (segplan.planning.trajectory) -----------------------
+    def poses(self, step: float = DEFAULT_STEP) -> PathSamples:
+        """Samples of the plan every ``step`` metres (at most) along the rear point's path.
+
+        Per sample: arc length ``s`` of A, A's ``x``, ``y``, heading ``theta`` (continuous),
+        the front wheel ``x_front``, ``y_front``, the signed curvature ``kappa`` of A's path
+        and the steering angle ``steer = arctan(L kappa)``; exact per union from its cubic,
+        every node included (twice where two unions meet: each side's curvature). See
+        :func:`segplan.planning.trajectory.sample_path`.
+
+        Parameters
+        ----------
+        step : float
+            Largest spacing (m) along the rear path, > 0; default 0.05.
+
+        Returns
+        -------
+        segplan.planning.trajectory.PathSamples
+            Read-only arrays (``.x``, ``.y``, ``.theta``, ``.kappa``, ...), ``.to_csv(path)``,
+            ``.nav_path()``, ``.save_nav_path(path)``.
+        """
+        return sample_path(self.unions, step)
+
+    def trajectory(
+        self,
+        v_max: float,
+        a_max: float,
+        a_lat_max: float,
+        steer_rate_max: float,
+        *,
+        step: float = DEFAULT_STEP,
+        jump_tol: float = JUMP_TOL,
+    ) -> Trajectory:
+        """A time law along the plan that respects every limit, from rest to rest.
+
+        ``v`` (the rear point's speed) at most ``v_max``, ``|dv/dt| <= a_max``,
+        ``v^2 |kappa| <= a_lat_max``, ``|d steer / dt| <= steer_rate_max`` everywhere (not
+        only at the samples); where the steering jumps at a node (by more than ``jump_tol``)
+        the robot stops and re-steers standing, ``|jump| / steer_rate_max`` seconds. A
+        forward-backward pass over :meth:`poses` (:func:`segplan.planning.trajectory.time_law`,
+        whose module docstring states the models and the discretisation error).
+
+        Parameters
+        ----------
+        v_max, a_max, a_lat_max : float
+            m/s, m/s^2, m/s^2 (> 0).
+        steer_rate_max : float
+            rad/s (> 0).
+        step : float
+            Sample spacing (m) along the rear path.
+        jump_tol : float
+            Steering steps up to this (radians) are driven through (rounding).
+
+        Returns
+        -------
+        segplan.planning.trajectory.Trajectory
+            The samples with ``t``, ``v``, ``a``; ``total_time``, ``jump_time`` (what the
+            jumps cost), ``dwell_time``, ``jumps``.
+        """
+        return time_law(self.unions, v_max, a_max, a_lat_max, steer_rate_max, step=step, jump_tol=jump_tol)
+
+    def facts(self, max_steer: float | None = None) -> PlanFacts:
+        """The steering angle at each node on each side and its jumps; the largest curvature,
+        against ``tan(max_steer) / L`` when the steering limit ``max_steer`` (radians) is given;
+        the rear and front path lengths (:func:`segplan.planning.trajectory.plan_facts`).
+        The clearance needs the floor: :func:`segplan.plan_clearance`."""
+        return plan_facts(self.unions, max_steer)
+
+    # -- a file that rebuilds the plan ----------------------------------------------------------
+    def save(self, path, scenario: Scenario | None = None) -> Path:
+        """Write the plan to ``path`` as JSON (:func:`plan_record`); :meth:`load` reads it back,
+        equal bit for bit. With ``scenario`` (the floor it was planned on) the file also
+        records the robot (``L``, ``half_width``, ``max_steer``) and the floor's name and
+        file. Returns the path written."""
+        path = Path(path)
+        text = json.dumps(plan_record(self, scenario), indent=1, allow_nan=False)
+        path.write_text(text + "\n", encoding="utf-8")
+        return path
+
+    @classmethod
+    def load(cls, path) -> Plan:
+        """The plan saved at ``path`` by :meth:`save` (:func:`plan_from_record`), its unions and
+        every number as they were, its options an options object again
+        (``plan_scenario(scenario, options=plan.options)`` plans as it was planned).
+
+        Raises
+        ------
+        ValueError
+            The file is not a saved plan, or a value in it is malformed or inconsistent
+            (named).
+        """
+        path = Path(path)
+        try:
+            record = json.loads(path.read_text(encoding="utf-8"))
+        except json.JSONDecodeError as exc:
+            raise ValueError(f"{path} is not JSON: {exc}") from None
+        return plan_from_record(record)
 
 
 def lattice_plan(start, unions, kinds, cost, search_cost, expanded, generated, seconds, stats) -> Plan:
@@ -257,4 +355,128 @@ def direct_plan(start, u, seconds: float, stats) -> Plan:
         1 + len(unions),
         seconds,
         stats,
+    )
+
+
+# -- the saved plan -------------------------------------------------------------------------------
+def plan_record(plan: Plan, scenario: Scenario | None = None) -> dict:
+    """A plan as plain JSON that :func:`plan_from_record` rebuilds exactly.
+
+    The keys of :meth:`Plan.to_dict` as they are (angles in degrees, for reading), and:
+    ``format`` (:data:`PLAN_FORMAT`) and ``format_version``; ``L`` (m); ``max_steer``
+    (radians) and ``half_width`` (m) of the robot and ``floor`` (``{"name", "path"}`` of the
+    scenario), each None unless ``scenario`` is given; ``iterations``; and ``exact``: the
+    nodes ``[x, y, theta]`` in radians and each union's :meth:`segplan.Union.state`. Every
+    float is written by ``repr`` (Python's ``json``), which reads back as the same double.
+
+    Raises
+    ------
+    ValueError
+        ``scenario`` is not a Scenario, or its robot's ``L`` is not the plan's.
+    """
+    L = plan.unions[0].L if plan.unions else None
+    robot = floor = None
+    if scenario is not None:
+        if not isinstance(scenario, Scenario):
+            raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+        robot = scenario.robot
+        if L is not None and robot.L != L:
+            raise ValueError(f"the scenario's robot has L={robot.L!r}, the plan's unions L={L!r}")
+        L = robot.L
+        floor = {"name": scenario.name or None, "path": None if scenario.path is None else str(scenario.path)}
+    return {
+        "format": PLAN_FORMAT,
+        "format_version": PLAN_FORMAT_VERSION,
+        **plan.to_dict(),
+        "L": L,
+        "max_steer": None if robot is None else robot.max_steer,
+        "half_width": None if robot is None else robot.half_width,
+        "floor": floor,
+        "iterations": [int(i) for i in plan.iterations],
+        "exact": {
+            "nodes": [[float(v) for v in p] for p in plan.nodes],
+            "unions": [u.state() for u in plan.unions],
+        },
+    }
+
+
+def _field(record: Mapping, name: str, kinds, what: str):
+    """``record[name]`` if it is one of ``kinds`` (not a bool), else ValueError naming it."""
+    if name not in record:
+        raise ValueError(f"the saved plan lacks {name!r}")
+    value = record[name]
+    if isinstance(value, bool) or not isinstance(value, kinds):  # no field is a flag
+        raise ValueError(f"the saved plan's {name!r} must be {what}, got {value!r}")
+    return value
+
+
+def _finite(v) -> bool:
+    """A finite number, not a bool."""
+    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def plan_from_record(record: Mapping) -> Plan:
+    """The plan of a :func:`plan_record` (read back from JSON): equal to the saved one, bit for bit.
+
+    Raises
+    ------
+    ValueError
+        Not a saved plan of this format, or a missing, malformed or inconsistent value
+        (named): the unions must join the nodes, each union's derived values must agree
+        with its ends (:meth:`segplan.Union.from_state`).
+    """
+    if not isinstance(record, Mapping) or record.get("format") != PLAN_FORMAT:
+        raise ValueError(f"not a saved segplan plan (no 'format': {PLAN_FORMAT!r})")
+    if record.get("format_version") != PLAN_FORMAT_VERSION:
+        raise ValueError(
+            f"saved plan format version {record.get('format_version')!r}; this segplan reads "
+            f"version {PLAN_FORMAT_VERSION}"
+        )
+    exact = _field(record, "exact", Mapping, "a mapping of nodes and unions")
+    nodes = []
+    for i, p in enumerate(_field(exact, "nodes", list, "a list")):
+        if not (isinstance(p, list) and len(p) == 3 and all(_finite(v) for v in p)):
+            raise ValueError(f"the saved plan's node {i} must be [x, y, theta] of finite numbers, got {p!r}")
+        nodes.append(Pose(*(float(v) for v in p)))
+    unions = tuple(Union.from_state(u) for u in _field(exact, "unions", list, "a list"))
+    if len(nodes) != len(unions) + 1:
+        raise ValueError(f"the saved plan has {len(nodes)} nodes for {len(unions)} unions")
+    for i, u in enumerate(unions):
+        if u.p0 != nodes[i] or u.p1 != nodes[i + 1]:
+            raise ValueError(f"the saved plan's union {i} does not join nodes {i} and {i + 1}")
+    number, count, text = (int, float), int, str
+    iterations = _field(record, "iterations", list, "a list of integers")
+    if not all(isinstance(i, int) and not isinstance(i, bool) for i in iterations):
+        raise ValueError("the saved plan's 'iterations' must be a list of integers")
+    kinds = _field(record, "kinds", list, "a list of node kinds")
+    if len(kinds) != len(nodes) or not all(isinstance(k, str) for k in kinds):
+        raise ValueError(f"the saved plan's 'kinds' must name each of its {len(nodes)} nodes")
+    refinement = record.get("refinement")
+    if refinement is not None:
+        try:
+            refinement = Refinement(**refinement)
+        except TypeError as exc:
+            raise ValueError(f"the saved plan's 'refinement' is malformed: {exc}") from None
+    options = record.get("options")
+    planner = record.get("planner")
+    if planner is not None and not isinstance(planner, str):
+        raise ValueError(f"the saved plan's 'planner' must be a string or null, got {planner!r}")
+    return Plan(
+        nodes=tuple(nodes),
+        unions=unions,
+        cost=float(_field(record, "cost", number, "a number")),
+        search_cost=float(_field(record, "search_cost", number, "a number")),
+        expanded=_field(record, "expanded", count, "an integer"),
+        generated=_field(record, "generated", count, "an integer"),
+        seconds=float(_field(record, "seconds", number, "a number")),
+        heuristic=_field(record, "heuristic", text, "a string"),
+        cost_kind=_field(record, "cost_kind", text, "a string"),
+        version=_field(record, "version", text, "a string"),
+        collision_checks=_field(record, "collision_checks", count, "an integer"),
+        exact_checks=_field(record, "exact_checks", count, "an integer"),
+        iterations=tuple(iterations),
+        kinds=tuple(kinds),
+        refinement=refinement,
+        planner=planner,
+        options=None if options is None else options_from_dict(options),
     )

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
-from .plan import check_option
+from .checks import check_option
 
 __all__ = ["SCHEDULE", "Schedule"]
 

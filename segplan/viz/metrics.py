@@ -59,7 +59,15 @@ from ..floor.geometry import check_bounds
 from ..model.pose import as_poses, check_length, wrap
 from ..model.union import Union
 
-__all__ = ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses", "se2_poses", "union_poses"]
+__all__ = [
+    "PathMetrics",
+    "measure_path",
+    "measure_scenario_path",
+    "plan_clearance",
+    "plan_poses",
+    "se2_poses",
+    "union_poses",
+]
 
 #: Default spacing (m) of the samples made by the converters.
 DEFAULT_STEP = 0.01
@@ -228,6 +236,27 @@ def measure_path(
 def measure_scenario_path(poses, scenario, *, jump_tol: float | None = None) -> PathMetrics:
     """:func:`measure_path` in a :class:`segplan.Scenario`: its enlarged obstacles and free bounds."""
     return measure_path(poses, scenario.robot.L, scenario.enlarged, scenario.free_bounds, jump_tol=jump_tol)
+
+
+def plan_clearance(plan, scenario, step: float = DEFAULT_STEP) -> float:
+    """The smallest gap (m) beyond the robot's half-width between a plan and a floor's obstacles and walls.
+
+    The ``clearance`` of :func:`measure_scenario_path` on :func:`plan_poses` (module docstring):
+    measured in the planning model (obstacles enlarged by ``half_width``, walls moved in as
+    much), so the real gap between the robot's body and the raw obstacles is at least this.
+    Sampled every ``step`` m or less: it overestimates the continuous clearance by at most
+    about ``step / 2``. Negative: the plan leaves the walls.
+
+    Parameters
+    ----------
+    plan : segplan.Plan or iterable of Union
+        A plan (its ``unions``) or its unions.
+    scenario : segplan.Scenario
+        The floor it is driven on.
+    step : float
+        Largest spacing (m) of the samples of A and B.
+    """
+    return measure_scenario_path(plan_poses(plan, step), scenario).clearance
 
 
 # -- converters ------------------------------------------------------------------------------
