@@ -1,4 +1,4 @@
-"""The floor kinds of issue 25 (segplan.studies.floor_kinds and floor_layouts).
+"""The floor kinds of issue 25 (segplan.studies.floor_kinds, floor_layouts, kind_study).
 
 - every kind's floors are deterministic (bit for bit, pinned keys), valid scenarios with free
   start and goal, inside their bounds;
@@ -7,22 +7,31 @@
   them; the free bay between parked cars and the nose-in goal; clutter counts and gaps;
   the other robots' ranges; the large sites' roads; tight starts face something close
   ahead and can turn away;
-- chapter 9 can draw them with segplan.viz.plot.
+- the study's summary and worst floors judge synthetic tables as stated, its OMPL side goes
+  through the robustness study's run_ompl with this study's provenance, and
+  ``benchmarks/floor_kinds.py`` runs (segplan side, one floor of two kinds).
 """
 
 import json
 import math
+import subprocess
+import sys
 from itertools import pairwise
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 import shapely
 
 from segplan.floor.scenario import scenario_from_dict
 from segplan.studies import floor_kinds as fk
 from segplan.studies import floor_layouts as fl
+from segplan.studies import kind_study as ks
+from segplan.studies import robustness as rb
 from segplan.studies.floors import ROBOT, floor_key
 
+ROOT = Path(__file__).resolve().parents[1]
 #: Floors drawn per kind in these tests (each kind's first ones).
 N_TEST = {kind: 10 if kind == "large" else 12 for kind in fk.FLOOR_KINDS}
 #: floor_key of floor 0 of each kind at GENERATOR_VERSION 1: a change of any floor must bump
@@ -333,6 +342,113 @@ def test_stress_floor_small():
     )
     assert (pairs[0] == pairs[1]).all()  # no two rectangles closer than a fifth of a cell
     assert max(sc.start.x, sc.start.y) <= 30.0 and min(sc.goal.x, sc.goal.y) >= 270.0
+
+
+# -- the study ----------------------------------------------------------------------------
+def _table() -> pd.DataFrame:
+    rows = [
+        # group, floor, solved, valid, reason, ompl_solved, ompl_runs, ratio, seconds
+        ("rooms", "rooms-000", True, True, "", True, 1, 1.10, 0.10),
+        ("rooms", "rooms-001", False, False, "exhausted", True, 1, math.nan, 1.00),
+        ("rooms", "rooms-002", True, False, "", False, 1, math.nan, 0.30),
+        ("large", "large-000", True, True, "", True, 1, 1.30, 2.00),
+        ("large", "large-001", True, True, "", False, 1, math.nan, 0.50),
+        ("large", "large-002", False, False, "expansions", False, 0, math.nan, 0.70),
+    ]
+    cols = ["group", "floor", "solved", "valid", "reason", "ompl_solved", "ompl_runs", "ratio", "seconds"]
+    t = pd.DataFrame(rows, columns=cols)
+    t["ratio"] = t["ratio"].astype(object)  # as compare() gives it without OMPL results
+    t["cpu_seconds"] = 0.5 * t["seconds"]
+    return t
+
+
+def test_summary_and_worst_floors():
+    s = ks.summary(_table()).set_index("kind")
+    assert list(s.columns) == list(ks.SUMMARY_COLUMNS[1:])
+    rooms, large = s.loc["rooms"], s.loc["large"]
+    assert (rooms.floors, rooms.ompl_solved, rooms.segplan_solved, rooms.solved_of_ompl) == (3, 2, 1, 1)
+    assert (rooms.invalid, rooms.no_plan, rooms.ratio_worst) == (1, "exhausted: 1", 1.10)
+    assert (large.ompl_runs, large.segplan_solved, large.segplan_only, large.ratio_floors) == (2, 2, 1, 1)
+    assert large.time_max_ms == pytest.approx(2000.0) and large.cpu_median_ms == pytest.approx(350.0)
+    assert rooms.time_median_ms == pytest.approx(300.0)
+    w = ks.worst_floors(_table(), per_kind=1)
+    assert list(zip(w.floor, w.why, strict=True)) == [
+        ("rooms-001", "OMPL solves, segplan does not"),
+        ("rooms-002", "invalid plan"),
+        ("rooms-000", "largest length ratio"),
+        ("large-002", "no plan; no OMPL run"),
+        ("large-000", "largest length ratio"),
+    ]
+    with pytest.raises(ValueError, match="per_kind"):
+        ks.worst_floors(_table(), per_kind=-1)
+
+
+def test_ompl_side_goes_through_the_robustness_runner(tmp_path, monkeypatch):
+    """Every kind in turn, BIT* 5 s seed 1; stored by rb.run_ompl with this study's provenance
+    (fake runs: the runner and its executor are tested in test_robustness)."""
+    groups = {k: fk.kind_floors(k, 2) for k in ("parking", "warehouse")}
+    jobs = ks.ompl_jobs(groups)
+    assert [(j[0], j[1].name, j[2], j[3], j[4]) for j in jobs] == [
+        ("parking", "parking-000", "BITstar", 5.0, 1),
+        ("warehouse", "warehouse-000", "BITstar", 5.0, 1),
+        ("parking", "parking-001", "BITstar", 5.0, 1),
+        ("warehouse", "warehouse-001", "BITstar", 5.0, 1),
+    ]
+    with pytest.raises(ValueError, match="kinds"):
+        ks.kind_groups(1, ["garden"])
+
+    def fake_record(job, resolution):
+        group, sc, planner, budget, seed = job
+        row = dict.fromkeys(rb.OMPL_COLUMNS, math.nan)
+        row.update(group=group, floor=sc.name, floor_key=floor_key(sc), generator=-1, planner=planner)
+        row.update(budget=budget, seed=seed, status="Exact solution", solved=True, valid=True)
+        row.update(simplified_valid=True, seconds=budget, cpu_seconds=0.97 * budget, messages="")
+        row.update(front_length=12.0, simplified_front_length=11.0, load_before=0.1, load_after=0.1)
+        return {**row, "poses": [[0.0, 0.0, 0.0]], "simplified_poses": [[0.0, 0.0, 0.0]]}
+
+    monkeypatch.setattr(rb, "ompl_record", fake_record)
+    t = ks.run_ompl(groups, tmp_path / ks.OMPL_CSV_NAME, workers=1)
+    assert len(t) == 4 and (t["generator"] == fk.GENERATOR_VERSION).all()
+    prov = json.loads((tmp_path / "floor_kinds_ompl.json").read_text())
+    assert prov["generator"] == "segplan.studies.floor_kinds" and prov["budgets"] == [5.0]
+    assert prov["sessions"][-1]["fairness"]["min_share"] == 0.9
+    row = dict.fromkeys(rb.SEGPLAN_COLUMNS, 0.0)
+    row.update(group="parking", floor="parking-000", floor_key=floor_key(groups["parking"][0]))
+    row.update(solved=True, valid=True, reason="", front_length=12.1)
+    seg = pd.DataFrame([row])
+    table = rb.compare(seg, t)
+    assert table["ratio"].iloc[0] == pytest.approx(12.1 / 11.0)  # against BIT*'s simplified path
+
+
+def test_harness_runs_the_segplan_side(tmp_path):
+    out = subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "benchmarks" / "floor_kinds.py"),
+            "--n",
+            "1",
+            "--kinds",
+            "parking",
+            "warehouse",
+        ]
+        + ["--results", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=ROOT,
+    )
+    assert out.returncode == 0, out.stderr[-3000:]
+    seg = ks.read_segplan(tmp_path / ks.SEGPLAN_CSV_NAME)
+    assert (
+        list(seg["floor"]) == ["parking-000", "warehouse-000"] and not (seg["solved"] & ~seg["valid"]).any()
+    )
+    meta = json.loads((tmp_path / "floor_kinds_segplan.json").read_text())
+    assert (
+        meta["generator_version"] == fk.GENERATOR_VERSION and "benchmarks/floor_kinds.py" in meta["command"]
+    )
+    assert len(meta["commit"]) == 40 and set(meta["cpu_share"]) == {"min", "median", "max"}
+    summary = pd.read_csv(tmp_path / "floor_kinds_summary.csv")
+    assert list(summary["kind"]) == ["parking", "warehouse"] and "time_p90_ms" in summary
 
 
 def test_floors_draw_with_the_books_plot():

@@ -72,7 +72,7 @@ quarter circle at its smallest radius and ``m`` is drawn in :data:`TIGHT_MARGIN`
 right, is free (poses checked every ``pi R / 48`` of A's arc), so it is hard but not a
 trap. The floor's description says so.
 
-Feasibility is not proved: OMPL's BIT* is the oracle of the study.
+Feasibility is not proved: OMPL's BIT* is the oracle (:mod:`segplan.studies.kind_study`).
 The layouts leave room to drive (aisles and doors wider than the robot, roads between
 blocks, tight starts with room for a turn) so that most floors should be feasible for a
 forward-only robot. Start and goal are free poses, checked here with the scenario's own

@@ -365,7 +365,7 @@ def run_ompl(
     ``about`` describes another study's floors and runs in the provenance (its ``what``,
     ``generator_version``, ``budgets``, ``seeds``; default: this study's); its
     ``generator_version`` is then the ``generator`` column of every stored run
-    (``segplan.studies.kind_study`` runs its floors through here).
+    (:mod:`segplan.studies.kind_study` runs its floors through here).
     """
     out, paths_out, provenance = Path(out), Path(paths_out), Path(provenance)
     out.parent.mkdir(parents=True, exist_ok=True)
