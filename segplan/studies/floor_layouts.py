@@ -13,10 +13,11 @@ Warehouse (:func:`warehouse_layout`, in a 30 x 18 m hall)
     Rack rows along x, each a back-to-back rack of depth :data:`RACK_DEPTH` (1.0-2.2 m),
     stacked from the bottom wall: a wall aisle, then rack, aisle, rack, ... while one more
     rack and a 2 m aisle fit (3-4 rows); the aisles between racks are :data:`AISLE_WIDTH`
-    (2.0-3.2 m) wide, the aisle along the top wall takes what is left (at least 2.0 m). One
-    straight cross aisle (:data:`CROSS_AISLE_WIDTH`, 2.6-3.6 m, centred in the middle
-    30-70 % of the racks) cuts every row in two; end aisles (:data:`END_AISLE_WIDTH`,
-    2.6-3.6 m) at both ends, or, for a dead-end layout, the racks reach one end wall.
+    (2.0-3.2 m) wide, the aisle along the top wall takes what is left (2.0 m to about 7 m:
+    a staging area). One straight cross aisle (:data:`CROSS_AISLE_WIDTH`, 2.6-3.6 m,
+    centred in the middle 30-70 % of the racks) cuts every row in two; end aisles
+    (:data:`END_AISLE_WIDTH`, 2.6-3.6 m) at both ends, or, for a dead-end layout, the racks
+    reach one end wall.
     Lanes: every aisle, between racks and along the walls, the cross aisle, the end aisles.
     Faces: the racks' long sides.
 Rooms (:func:`rooms_layout`, in a 20 x 12 m building)
@@ -33,7 +34,7 @@ Rooms (:func:`rooms_layout`, in a 20 x 12 m building)
 Parking lot (:func:`parking_layout`)
     Two rows of :data:`BAYS_PER_ROW` (10-16) bays of pitch :data:`BAY_PITCH` (1.0-1.3 m)
     along the bottom and top walls, a drive aisle (:data:`PARKING_AISLE`, 3.0-4.2 m) between
-    them and end zones (:data:`END_ZONE`, 3.0-4.5 m) at both ends: about 18-30 x 7-8.5 m.
+    them and end zones (:data:`END_ZONE`, 3.0-4.5 m) at both ends: 16-30 x 6.4-8.6 m.
     Every bay but one holds a parked car (:data:`CAR_LENGTH` 1.5-1.8 m by :data:`CAR_WIDTH`
     0.6-0.72 m, nose 0.05-0.25 m from the wall, shifted up to 4 cm along the row and turned
     up to 3 degrees, but never within 5 cm of its bay's sides), so the free bay is at least
@@ -49,8 +50,8 @@ Large site (:func:`site_layout`)
     :data:`SITE_BLOCKS` x :data:`SITE_BLOCKS` (3-5 by 3-5) cells of :data:`SITE_CELL` (37 x
     25 m), so 111-185 m by 75-125 m, each holding, equally likely, a warehouse hall (the
     warehouse layout, no dead ends, inside walls 0.2 m thick with gates as wide as the
-    aisles they open: one or two on each end wall and, half the time, one at each end of
-    the cross aisle) or a rooms building (the rooms layout inside walls 0.2 m thick, with
+    aisles they open: one or two on each end wall, and each end of the cross aisle open
+    half the time) or a rooms building (the rooms layout inside walls 0.2 m thick, with
     entrance doors of 1.6-2.0 m into two of its rooms), placed at random in its cell with
     roads of at least 6 m between the blocks' walls.
 """
