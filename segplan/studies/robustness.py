@@ -346,6 +346,7 @@ def run_ompl(
     scheduler=None,
     rule: FairnessRule = FAIRNESS,
     argv: Sequence[str] = ("benchmarks/robustness.py", "--ompl"),
+    about: dict | None = None,
 ) -> pd.DataFrame:
     """Run the OMPL jobs not stored yet through the one executor; store every run; the whole table.
 
@@ -360,6 +361,11 @@ def run_ompl(
     ``argv``, with the fairness rule, the runs done, the refusals and the load during them)
     and drops the sessions of older harness versions, none of whose runs are kept. Each
     stored run carries its own CPU share, load and attempts.
+
+    ``about`` describes another study's floors and runs in the provenance (its ``what``,
+    ``generator_version``, ``budgets``, ``seeds``; default: this study's); its
+    ``generator_version`` is then the ``generator`` column of every stored run
+    (:mod:`segplan.studies.kind_study` runs its floors through here).
     """
     out, paths_out, provenance = Path(out), Path(paths_out), Path(provenance)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -386,6 +392,7 @@ def run_ompl(
         motion_check_resolution_m=om.RESOLUTION,
         measured_by="segplan.viz.metrics.measure_scenario_path, samples every 1 cm",
     )
+    record.update(about or {})
     before = set(journal.read())
     records = run_jobs(
         partial(ompl_record, resolution=om.RESOLUTION),
@@ -411,7 +418,8 @@ def run_ompl(
     # the sessions whose runs can still be stored: this harness's (older runs were all run again)
     record["sessions"] = [s for s in record["sessions"] if s.get("harness_version") == om.HARNESS_VERSION]
     record["sessions"].append(session)
-    rows = [{c: r[c] for c in OMPL_COLUMNS} for r in records.values()]
+    generator = record["generator_version"]
+    rows = [{**{c: r[c] for c in OMPL_COLUMNS}, "generator": generator} for r in records.values()]
     _replace(out, lambda tmp: pd.DataFrame(rows, columns=list(OMPL_COLUMNS)).to_csv(tmp, index=False))
 
     def write_paths(tmp: Path) -> None:
