@@ -33,10 +33,10 @@ Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width
 ``max_steer_deg`` 45, ``bounds`` none. Any other key is an error, so is a repeated key.
 Polygons may be given in either orientation and are stored counter-clockwise; nothing
 else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
-``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A vertex that is
-repeated (also a closing copy of the first one) is an error, as are self-intersecting
-and zero-area polygons, a vertex collinear with its neighbours in a convex polygon,
-NaN/Infinity literals and numbers that overflow to infinity.
+``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A closing copy of
+the first vertex and vertices collinear with their neighbours are dropped (issue 27;
+refused before). A vertex repeated elsewhere is an error, as are self-intersecting and
+zero-area polygons, NaN/Infinity literals and numbers that overflow to infinity.
 
 A pose collides when its segment A->B touches an enlarged obstacle (closed sets:
 touching is a collision); it is out of bounds unless the whole segment lies strictly
