@@ -20,6 +20,7 @@ from load_file import ROOT, load_file
 from PIL import Image
 
 import segplan
+from segplan.cli import EXIT_BAD_INPUT, main
 from segplan.floor.geometry import check_convex_polygon
 from segplan.floor.occupancy import classify, cover_cells, rectangles, touched_cells
 
@@ -478,3 +479,83 @@ def test_a_missing_yaml_and_a_list_are_refused(tmp_path):
     (tmp_path / "list.yaml").write_text("- image\n- map.pgm\n")
     with pytest.raises(ValueError, match="'key: value' lines"):
         segplan.load_ros_map(tmp_path / "list.yaml")
+
+
+# -- the command line -----------------------------------------------------------------------
+@pytest.fixture
+def room_yaml(tmp_path):
+    """small_map() as a map_server map (grey levels: 0 occupied, 254 free, 205 unknown)."""
+    g = small_map()
+    img = np.where(g == OCC, 0, 254).astype(np.uint8)
+    img[5:15, 60:70] = 205  # an unknown patch: x 6..7 m, y 4.5..5.5 m
+    write_pgm(tmp_path / "room.pgm", img)
+    path = tmp_path / "room.yaml"
+    path.write_text(
+        "image: room.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n", encoding="utf-8"
+    )
+    return path
+
+
+ROBOT = ["--L", "0.8", "--half-width", "0.2"]
+
+
+def test_cli_plans_on_a_map(room_yaml, capsys):
+    code = main(
+        ["plan", str(room_yaml), "--start", "1", "1", "0", "--goal", "8.5", "1", "0", *ROBOT, "--json"]
+    )
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    import json
+
+    data = json.loads(out.out)
+    assert data["found"] is True and data["scenario"] == "room"
+    assert data["nodes"][0] == [1.0, 1.0, 0.0] and data["nodes"][-1] == [8.5, 1.0, 0.0]
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (
+            ["--start", "4.6", "1", "0", "--goal", "8.5", "1", "0", *ROBOT],
+            "start pose .* collides with the blocked",
+        ),
+        (["--start", "-5", "1", "0", "--goal", "8.5", "1", "0", *ROBOT], "start pose .* out of bounds"),
+        (
+            ["--start", "6.1", "5.0", "0", "--goal", "8.5", "1", "0", *ROBOT],
+            "start pose .* collides",
+        ),  # unknown
+        (["--goal", "8.5", "1", "0", *ROBOT], "a map needs --start"),
+        (["--start", "1", "1", "0", "--goal", "8.5", "1", "0"], "a map needs --L"),
+        (["--start", "1", "1", "0", "--goal", "8.5", "1", "0", "--L", "-1"], "L must be"),
+        (["--start", "1", "1", "0", "--goal", "8.5", "1", "0", *ROBOT, "--max-steer-deg", "95"], "max_steer"),
+    ],
+)
+def test_cli_map_errors_are_one_line_exit_2(room_yaml, capsys, args, words):
+    assert main(["plan", str(room_yaml), *args]) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err
+    assert err.startswith("segplan: error: ") and err.count("\n") == 1 and "Traceback" not in err
+    import re
+
+    assert re.search(words, err), err
+
+
+def test_cli_bad_map_files_are_one_line_exit_2(tmp_path, room_yaml, capsys):
+    poses = ["--start", "1", "1", "0", "--goal", "8.5", "1", "0", *ROBOT]
+    cases = {
+        "bad.yaml": ("image: room.pgm\nresolution: [0.1\n", "invalid YAML"),
+        "missing.yaml": ("image: gone.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n", "cannot read"),
+        "thresh.yaml": (
+            "image: room.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nfree_thresh: 0.9\n",
+            "free_thresh < occupied_thresh",
+        ),
+        "full.yaml": ("image: full.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n", "no free cell"),
+    }
+    write_pgm(tmp_path / "full.pgm", np.zeros((3, 3), dtype=np.uint8))
+    for name, (text, words) in cases.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+        assert main(["plan", str(tmp_path / name), *poses]) == EXIT_BAD_INPUT
+        err = capsys.readouterr().err
+        assert err.startswith(f"segplan: error: {tmp_path / name}") and words in err, err
+        assert err.count("\n") == 1 and "Traceback" not in err
+    assert main(["plan", "fig5_example1", "--start", "1", "1", "0"]) == EXIT_BAD_INPUT
+    assert "--start applies to a map" in capsys.readouterr().err
