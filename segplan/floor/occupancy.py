@@ -266,7 +266,11 @@ def _cover_region(S: np.ndarray, r0: int, c0: int, P: np.ndarray, F: np.ndarray,
             if not np.any(P[rr, c0 + hi] - P[rr, c0 + lo]):
                 out.append(hull + np.array([c0, r0], dtype=np.int64))
                 continue
-        if h * w <= FEW_RECTANGLES_AREA:
+        # rows differing from the row below each end or start a rectangle: too many, no partition
+        if (
+            h * w <= FEW_RECTANGLES_AREA
+            and np.count_nonzero(np.any(S[1:] != S[:-1], axis=1)) < 2 * FEW_RECTANGLES
+        ):
             exact = rectangles(S)
             if len(exact) <= FEW_RECTANGLES:  # an L, a U, a step: its exact rectangles, no loss
                 out.extend(_box(r0 + a, c0 + b, r0 + c, c0 + d) for a, b, c, d in exact.tolist())
@@ -280,21 +284,53 @@ def _cover_region(S: np.ndarray, r0: int, c0: int, P: np.ndarray, F: np.ndarray,
 
 
 def _cells_hull(S: np.ndarray) -> np.ndarray:
-    """Convex hull (counter-clockwise, int64 corners) of the True cells of ``S``.
+    """Convex hull (counter-clockwise, int64 corners, strictly convex) of the True cells of ``S``.
 
-    The hull of the cells' corners: per row with cells, the outer corners of its first and
-    last cell (scipy's Qhull, then collinear vertices dropped exactly).
+    At each integer height ``y`` the cells of rows ``y - 1`` and ``y`` reach from ``xl(y)``
+    (the least left corner) to ``xr(y)`` (the greatest right corner); the hull is the convex
+    chain of the ``(xr(y), y)`` going up followed by that of the ``(xl(y), y)`` coming down
+    (Andrew's monotone chain, exact in integers). A point no farther out than one below and
+    one above it is no vertex and is dropped first (prefix and suffix maxima, :func:`_extreme`).
     """
-    from scipy.spatial import ConvexHull
-
     w = S.shape[1]
     rr = np.flatnonzero(S.any(axis=1))
     left = S.argmax(axis=1)[rr]
     right = w - S[:, ::-1].argmax(axis=1)[rr]
-    x = np.concatenate((left, left, right, right))
-    y = np.concatenate((rr, rr + 1, rr, rr + 1))
-    pts = np.column_stack((x, y)).astype(np.int64)
-    return _strict_ccw(pts[ConvexHull(pts).vertices])
+    ys = np.concatenate((rr, rr + 1))
+    order = np.argsort(ys, kind="stable")
+    ys = ys[order]
+    heights, first = np.unique(ys, return_index=True)
+    xl = np.minimum.reduceat(np.concatenate((left, left))[order], first)
+    xr = np.maximum.reduceat(np.concatenate((right, right))[order], first)
+    up = _monotone_chain(xr, heights, _extreme(xr))
+    down = _monotone_chain(xl[::-1], heights[::-1], _extreme(-xl[::-1]))
+    return _strict_ccw(np.array(up + down, dtype=np.int64))
+
+
+def _extreme(x: np.ndarray) -> np.ndarray:
+    """Points that may be hull vertices of a side pushed towards +x: the two ends, and those
+    strictly beyond every point before them or every point after them (another lies on or
+    inside the segment between a point at least as far out before it and one after it)."""
+    n = len(x)
+    keep = np.ones(n, dtype=bool)
+    if n > 2:
+        before = np.maximum.accumulate(x)[:-2]  # before[i]: the max of x[:i + 1]
+        after = np.maximum.accumulate(x[::-1])[::-1][2:]  # after[i]: the max of x[i + 2:]
+        keep[1:-1] = (x[1:-1] > before) | (x[1:-1] > after)
+    return keep
+
+
+def _monotone_chain(x: np.ndarray, y: np.ndarray, keep: np.ndarray) -> list:
+    """The counter-clockwise convex chain through the kept points ``(x, y)`` in their order."""
+    out: list = []
+    for px, py in zip(x[keep].tolist(), y[keep].tolist(), strict=True):
+        while len(out) >= 2:
+            (ax, ay), (bx, by) = out[-2], out[-1]
+            if (bx - ax) * (py - by) - (by - ay) * (px - bx) > 0:  # a left turn at b: keep b
+                break
+            out.pop()
+        out.append((px, py))
+    return out
 
 
 def _strict_ccw(v: np.ndarray) -> np.ndarray:
