@@ -42,8 +42,10 @@ __all__ = ["DEFAULT_TOLERANCE_CELLS", "Floor", "WORLD_LIMIT"]
 WORLD_LIMIT = 1e6
 
 #: Default ``tolerance`` of :meth:`Floor.from_occupancy`, in cells: a piece may touch a
-#: free cell within two cells of a blocked one. Measured on a 2000 x 3000 synthetic office
-#: map by ``benchmarks/maps.py`` (stored in ``benchmarks/results/maps.json``).
+#: free cell within two cells of a blocked one. On the 2000 x 3000-cell synthetic office map
+#: of ``benchmarks/maps.py`` (``benchmarks/results/maps.json``): 1447 pieces touching 1.02 %
+#: of the free cells, against 21489 exact rectangles (0 cells) and 1926 pieces, 0.94 %
+#: (1 cell); 3 cells saves 8 % more pieces for 1.07 %.
 DEFAULT_TOLERANCE_CELLS = 2
 
 
