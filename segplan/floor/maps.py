@@ -96,8 +96,9 @@ class Floor:
 
     def __repr__(self) -> str:
         where = "" if self.cells is None else f", map {self.cells.shape[1]} x {self.cells.shape[0]} cells"
+        n, m = len(self.obstacles), len(self.outlines)
         return (
-            f"Floor({len(self.obstacles)} convex pieces of {len(self.outlines)} obstacles, "
+            f"Floor({n} convex piece{'' if n == 1 else 's'} of {m} obstacle{'' if m == 1 else 's'}, "
             f"bounds={None if self.bounds is None else list(self.bounds)}{where}, source={self.source!r})"
         )
 
