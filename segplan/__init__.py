@@ -12,7 +12,9 @@ The API by concept (the book's chapter "API reference" groups it by the paper's 
 * floor, the robot's world: ``Robot``, ``Scenario``, ``make_scenario``, ``load_scenario``,
   ``save_scenario``, ``shipped_scenarios``, ``random_world``, ``ConvexPolygon``,
   ``convex_pieces``, ``collides``, ``union_free``, ``union_in_bounds``, ``pose_collides``,
-  ``pose_in_bounds``, ``CollisionStats``, ``ScenarioError``;
+  ``pose_in_bounds``, ``CollisionStats``, ``ScenarioError``; beyond the paper, maps:
+  ``Floor`` (obstacles and walls, from polygons or an occupancy grid) and ``load_ros_map``
+  (a ROS ``map_server`` YAML file and its image);
 * planning: ``plan``, ``plan_scenario``, ``Plan``, ``NoPathError``, ``refine``,
   ``Refinement``, and the options objects ``PaperOptions``, ``DefaultOptions``,
   ``LatticeOptions``, ``RefineOptions`` (every tuning value of a planner, with its provenance);
@@ -27,7 +29,8 @@ The house, every dependency pointing down (enforced by the import-linter contrac
     cli | studies/                 the command line, the book's studies
     fit/                           the fits behind model/constants.json
     planning/ | viz/               the planners; plots, animations, path measures
-    floor/                         geometry, decompose, sweep, collision, scenario, random_floors
+    floor/                         geometry, decompose, occupancy, sweep, maps, collision, scenario,
+                                   ros_map, random_floors
     model/                         pose, union, romberg, cost, frame, frame_exact, derivation, constants
 
     planning/:  api > default > refine | stages > paper/ | lattice/ > context | plan
@@ -44,7 +47,9 @@ stays exactly as reproduced whatever the default planner becomes.
 from .floor.collision import CollisionStats, collides, union_free, union_in_bounds
 from .floor.decompose import convex_pieces
 from .floor.geometry import ConvexPolygon, pose_collides, pose_in_bounds
+from .floor.maps import Floor
 from .floor.random_floors import random_world
+from .floor.ros_map import load_ros_map
 from .floor.scenario import (
     Robot,
     Scenario,
@@ -78,3 +83,4 @@ __all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses"
 __all__ += ["optimal_alpha", "optimal_alpha_intrinsic"]
 __all__ += ["Refinement", "refine"]
 __all__ += ["DefaultOptions", "LatticeOptions", "PaperOptions", "RefineOptions"]
+__all__ += ["Floor", "load_ros_map"]

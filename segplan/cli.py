@@ -5,7 +5,9 @@
 (:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`).
 
 Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario file or the
-name of a shipped scenario (``segplan plan fig5_example1``).
+name of a shipped scenario (``segplan plan fig5_example1``), or a ROS ``map_server`` map
+with the poses and the robot: ``segplan plan map.yaml --start X Y THETA_DEG --goal X Y
+THETA_DEG --L 1.2 [--half-width 0.35] [--max-steer-deg 45]`` (:func:`segplan.load_ros_map`).
 
 Plans a forward-only path of the oriented-segment robot (Campoy et al., 1989) on a
 scenario file (see :mod:`segplan.floor.scenario` for the format), prints its cost (LONGD, the
@@ -23,7 +25,8 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .floor.scenario import ScenarioError, load_scenario, shipped_scenarios
+from .floor.ros_map import load_ros_map
+from .floor.scenario import Robot, Scenario, ScenarioError, load_scenario, make_scenario, shipped_scenarios
 from .planning.api import plan_scenario
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
@@ -167,6 +170,7 @@ def build_parser() -> argparse.ArgumentParser:
         f"(default {DefaultOptions.time_limit:g})",
     )
     _add_trajectory_options(p)
+    _add_map_options(p)
     return parser
 
 
@@ -271,6 +275,57 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
     return out, lines
 
 
+MAP_SUFFIXES = (".yaml", ".yml")
+
+
+def _add_map_options(p: argparse.ArgumentParser) -> None:
+    """The options of a plan on a ROS map (SCENARIO a map_server .yaml file): poses and robot."""
+    g = p.add_argument_group(
+        "maps",
+        "SCENARIO may be a ROS map_server map (a .yaml file naming a PGM or PNG image); then "
+        "--start, --goal and --L are required. Unknown cells are obstacles.",
+    )
+    g.add_argument("--start", nargs=3, type=float, metavar=("X", "Y", "THETA_DEG"), help="start pose")
+    g.add_argument("--goal", nargs=3, type=float, metavar=("X", "Y", "THETA_DEG"), help="goal pose")
+    g.add_argument("--L", type=float, metavar="M", help="robot length A->B in metres")
+    g.add_argument("--half-width", type=float, metavar="M", help="robot half-width in metres (default 0)")
+    g.add_argument(
+        "--max-steer-deg", type=float, metavar="DEG", help="steering limit in degrees (default 45)"
+    )
+    g.add_argument("--unknown-free", action="store_true", help="treat the map's unknown cells as free space")
+
+
+def _scenario(args) -> Scenario:
+    """The scenario to plan on: a scenario file, or a ROS map with the poses and robot given.
+
+    Raises ScenarioError (one line, the file named) for any bad input.
+    """
+    is_map = Path(args.scenario).suffix.lower() in MAP_SUFFIXES
+    options = {"--start": args.start, "--goal": args.goal, "--L": args.L, "--half-width": args.half_width}
+    options |= {"--max-steer-deg": args.max_steer_deg, "--unknown-free": args.unknown_free or None}
+    given = [flag for flag, value in options.items() if value is not None]
+    if not is_map:
+        if given:
+            raise ScenarioError(
+                f"{given[0]} applies to a map (a ROS map_server .yaml file), not a scenario file"
+            )
+        return load_scenario(args.scenario)
+    missing = [f for f, v in (("--start", args.start), ("--goal", args.goal), ("--L", args.L)) if v is None]
+    if missing:
+        raise ScenarioError(f"{args.scenario}: a map needs {', '.join(missing)} (poses in m and deg, L in m)")
+    try:
+        floor = load_ros_map(args.scenario, unknown_is_occupied=not args.unknown_free)
+        robot = Robot(
+            args.L,
+            0.0 if args.half_width is None else args.half_width,
+            math.radians(45.0 if args.max_steer_deg is None else args.max_steer_deg),
+        )
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+    start, goal = ((x, y, math.radians(th)) for x, y, th in (args.start, args.goal))
+    return make_scenario(robot, start, goal, floor, name=Path(args.scenario).stem, source=args.scenario)
+
+
 def _format_plan(result: Plan, name: str) -> str:
     lines = [
         f"scenario    {name}",
@@ -337,7 +392,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return EXIT_BAD_INPUT
     try:
-        scenario = load_scenario(args.scenario)
+        scenario = _scenario(args)
     except ScenarioError as exc:
         print(f"segplan: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT

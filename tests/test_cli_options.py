@@ -12,6 +12,7 @@ back, where the printed output alone cannot show an option's effect.
 """
 
 import json
+import math
 import sys
 
 import numpy as np
@@ -38,6 +39,13 @@ OPTION_TESTS = {
     "json": "test_json_output_fields",
     "max_expansions": "test_max_expansions_limits_every_search",
     "time_limit": "test_time_limit_fails_with_reason_time",
+    # a ROS map as SCENARIO (issue 27)
+    "start": "test_map_start_and_goal_are_the_plans_ends",
+    "goal": "test_map_start_and_goal_are_the_plans_ends",
+    "L": "test_map_robot_options_make_the_robot",
+    "half_width": "test_map_robot_options_make_the_robot",
+    "max_steer_deg": "test_map_robot_options_make_the_robot",
+    "unknown_free": "test_map_unknown_free_opens_the_unknown_cells",
 }
 
 
@@ -333,3 +341,47 @@ def test_steer_rate_max_sets_the_re_steering_time(capsys, tmp_path):
     slow, _ = _law(capsys, tmp_path, "--steer-rate-max", "30")
     assert slow["trajectory"]["dwell_time"] == pytest.approx(2 * quick["trajectory"]["dwell_time"], rel=1e-12)
     assert slow["trajectory"]["limits"]["steer_rate_max_deg"] == 30
+
+
+# -- a ROS map as SCENARIO (issue 27) ------------------------------------------------------
+@pytest.fixture
+def room_map(tmp_path):
+    """A 10 x 6 m room at 0.1 m (map_server PGM and YAML): walls, and an unknown (grey) block
+    at x 4..6 m, y 0..6 m across the room, so only unknown cells made free let a plan through."""
+    import numpy as np
+
+    img = np.full((60, 100), 254, dtype=np.uint8)
+    img[:, :2] = img[:, -2:] = img[:2, :] = img[-2:, :] = 0
+    img[2:-2, 40:60] = 205
+    (tmp_path / "room.pgm").write_bytes(b"P5\n100 60\n255\n" + img.tobytes())
+    path = tmp_path / "room.yaml"
+    path.write_text("image: room.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n")
+    return str(path)
+
+
+MAP_POSES = ["--start", "1", "1", "0", "--goal", "8.5", "4", "90"]
+
+
+def test_map_start_and_goal_are_the_plans_ends(capsys, room_map):
+    status, data = run_json(capsys, room_map, *MAP_POSES, "--L", "0.8", "--unknown-free")
+    assert status == 0 and data["found"] is True
+    assert data["nodes"][0] == [1.0, 1.0, 0.0]
+    assert data["nodes"][-1] == pytest.approx([8.5, 4.0, 90.0])
+
+
+def test_map_robot_options_make_the_robot(capsys, spy, room_map):
+    robot = ["--L", "0.9", "--half-width", "0.25", "--max-steer-deg", "30", "--unknown-free"]
+    status, _ = run_json(capsys, room_map, *MAP_POSES, *robot)
+    assert status == 0
+    r = spy[-1]["scenario"].robot
+    assert (r.L, r.half_width) == (0.9, 0.25) and r.max_steer == pytest.approx(math.radians(30))
+    status, _ = run_json(capsys, room_map, *MAP_POSES, "--L", "0.9", "--unknown-free")
+    r = spy[-1]["scenario"].robot
+    assert status == 0 and (r.half_width, r.max_steer) == (0.0, pytest.approx(math.radians(45)))
+
+
+def test_map_unknown_free_opens_the_unknown_cells(capsys, room_map):
+    status, _ = run_json(capsys, room_map, *MAP_POSES, "--L", "0.8")  # the unknown block is a wall
+    assert status == EXIT_NO_PATH
+    status, data = run_json(capsys, room_map, *MAP_POSES, "--L", "0.8", "--unknown-free")
+    assert status == 0 and data["found"] is True

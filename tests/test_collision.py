@@ -417,7 +417,8 @@ def test_pose_in_bounds():
         ([[0, 0], [2, 0], [1, 0.2], [2, 2], [0, 2]], "not convex"),
         ([[0, 0], [1, 1], [1, 0], [0, 1]], "not convex"),  # bow-tie
         ([[0, 0], [1, 0], [1, 0], [0, 1]], "vertex 2 repeats vertex 1"),
-        ([[0, 0], [1, 0], [2, 0], [1, 1]], "collinear"),
+        ([[0, 0], [1, 0], [2, 0]], "collinear"),  # degenerate; one collinear vertex is dropped (issue 27)
+        ([[0, 0], [2, 0], [1, 0], [1, 1]], "doubles back"),
         (ngon((0, 0), 1, 5, 0)[[0, 2, 4, 1, 3]], "self-intersecting"),  # pentagram
         ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], "shape"),
         ("abc", "array of numbers"),

@@ -100,7 +100,7 @@ def test_property_orthogonal_skylines_partition_exactly(columns):
         ([[0, 0], [2, 2], [2, 0], [0, 2]], "not a simple polygon"),  # bow tie
         ([[0, 0], [4, 0], [4, 4], [2, 4], [2, -1], [0, 4]], "not a simple polygon"),  # crossing spike
         ([[0, 0], [1, 0], [2, 0]], "collinear"),
-        ([[0, 0], [1, 0], [1, 1], [0, 0]], "vertex 3 repeats vertex 0"),
+        ([[0, 0], [2, 0], [1, 1], [0, 0], [0, 2]], "vertex 3 repeats vertex 0"),  # closing copies are dropped
         ([[0, 0], [1, 0], [1, float("nan")]], "vertex 2"),
         ([[0, 0], [1, 0]], "at least 3 vertices"),
     ],

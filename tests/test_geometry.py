@@ -7,7 +7,8 @@ than ``LENGTH_TOL = 1e-12`` of the largest coordinate repeat a vertex). The prop
 builds convex polygons directly (points on a circle in angular order, any vertex count)
 and spoils them slightly: a duplicated vertex (exact or nearly), a point inserted on an
 edge or just off it (a collinear run, a tiny turn either way), the ring closed by
-repeating the first vertex, the orientation reversed. The convex validator and
+repeating the first vertex, the orientation reversed (since issue 27 a collinear vertex and
+a closing copy are dropped by every entry point alike, no longer refused). The convex validator and
 ``collides`` (the paper's test of convex polygons) accept and reject exactly the same
 polygons; so do the three scenario entry points, which also take simple non-convex
 polygons (issue 14, split by :mod:`segplan.floor.decompose`): every convex polygon, and a
@@ -106,20 +107,29 @@ def test_every_entry_point_accepts_the_same_polygons(pts):
 
 
 @pytest.mark.parametrize(
-    ("pts", "ok"),
+    ("pts", "kept"),
     [
-        ([[0, 0], [1, 0], [0, 1]], True),
-        ([[0, 0], [1, 0], [1, 0], [0, 1]], False),  # duplicate
-        ([[0, 0], [0.5, 0], [1, 0], [0, 1]], False),  # collinear run
-        ([[0, 0], [0.5, -1e-12], [1, 0], [0, 1]], False),  # a turn of 4e-12 rad: below ANGLE_TOL
-        ([[0, 0], [0.5, -1e-6], [1, 0], [0, 1]], True),  # a turn of 4e-6 rad: a real vertex
-        ([[0, 0], [1, 0], [0, 1], [0, 0]], False),  # closed ring
+        ([[0, 0], [1, 0], [0, 1]], 3),
+        ([[0, 0], [1, 0], [1, 0], [0, 1]], None),  # duplicate
+        # issue 27: a collinear vertex and a closing copy of the first are dropped, not refused
+        ([[0, 0], [0.5, 0], [1, 0], [0, 1]], 3),  # collinear run
+        ([[0, 0], [0.5, -1e-12], [1, 0], [0, 1]], 3),  # a turn of 4e-12 rad: below ANGLE_TOL, dropped
+        ([[0, 0], [0.5, -1e-6], [1, 0], [0, 1]], 4),  # a turn of 4e-6 rad: a real vertex
+        ([[0, 0], [1, 0], [0, 1], [0, 0]], 3),  # closed ring
+        ([[0, 0], [1, 0], [2, 0], [3, 0], [3, 1], [0, 1], [0, 0]], 4),  # both, a straight run of three
+        ([[0, 0], [2, 0], [1, 0], [1, 1]], None),  # doubles back: refused
     ],
 )
-def test_tolerances_are_the_stated_ones(pts, ok):
+def test_tolerances_are_the_stated_ones(pts, kept):
+    ok = kept is not None
     assert accepted(lambda: geo.check_convex_polygon(pts)) is ok
     assert accepted(lambda: segplan.collides(FAR_UNION, pts)) is ok
     assert accepted(lambda: segplan.plan(START, GOAL, [pts], L)) is ok
+    if ok:
+        v = geo.check_convex_polygon(pts)
+        assert len(v) == kept and geo._area2(v) > 0
+        # the polygon is the same point set: dropping a collinear vertex moves nothing
+        assert shapely.Polygon(v).symmetric_difference(shapely.Polygon(pts).buffer(0)).area < 1e-11
 
 
 def test_one_bounds_validator():
@@ -318,7 +328,7 @@ def test_segment_hits_edges_at_the_tolerance_edges():
     ("pts", "pattern"),
     [
         ([[0, 0], [2, 0], [1, 0], [1, 1]], r"vertex 1 \[2.0, 0.0\] doubles back"),
-        ([[0, 0], [1, 0], [2, 0], [1, 1]], r"vertex 1 \[1.0, 0.0\] is collinear with its neighbours"),
+        ([[0, 0], [1, 0], [2, 0], [1, 1], [1, 0.5]], r"turns clockwise at vertex 4 \[1.0, 0.5\]"),
         (
             [[0, 0], [2, 0], [2, 2], [1, 0.5], [0, 2]],
             r"turns clockwise at vertex 3 \[1.0, 0.5\] but counter-clockwise at vertex 0",

@@ -94,10 +94,10 @@ STAR = [[math.cos(a), math.sin(a)] for a in np.arange(5) * 4 * math.pi / 5]
         ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], "shape"),
         ([[0, 0], [1, 0], [float("nan"), 1]], "vertex 2: coordinates must be finite"),
         ([[0, 0], [1, 0], [float("inf"), 1]], "vertex 2: coordinates must be finite"),
-        ([[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]], "vertex 4 repeats vertex 0.*do not close the ring"),
+        ([[0, 0], [1, 0], [0, 0], [0, 1]], "vertex 2 repeats vertex 0"),
         ([[0, 0], [1, 0], [1, 0], [0, 1]], "vertex 2 repeats vertex 1"),
         ([[0, 0], [1, 0], [2, 0]], "degenerate.*collinear"),
-        ([[0, 0], [1, 0], [2, 0], [1, 1]], "vertex 1 .* collinear with its neighbours"),
+        ([[0, 0], [2, 0], [1, 0], [1, 1]], r"vertex 1 \[2.0, 0.0\] doubles back"),
         ([[0, 0], [2, 0], [1, 0.2], [1, 2]], "not convex.*vertex 2"),
         ([[0, 0], [1, 1], [1, 0], [0, 1]], "not convex"),  # bow tie
         (STAR, "self-intersecting.*2 x 360"),
@@ -108,6 +108,27 @@ def test_check_convex_polygon_rejects(vertices, pattern):
     with pytest.raises(ValueError, match=pattern) as info:
         check_convex_polygon(vertices, where="room.json: obstacles[3]")
     assert str(info.value).startswith("room.json: obstacles[3]")
+
+
+@pytest.mark.parametrize(
+    "vertices, kept",
+    [
+        ([[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]], [[0, 0], [1, 0], [1, 1], [0, 1]]),  # a closed ring
+        ([[0, 0], [1, 0], [2, 0], [1, 1]], [[0, 0], [2, 0], [1, 1]]),  # a collinear vertex
+        ([[0, 1], [1, 1], [1, 0], [0, 0], [0, 1]], [[0, 0], [1, 0], [1, 1], [0, 1]]),  # closed, clockwise
+        # a union of grid cells as shapely gives it: closed, every cell corner on the boundary kept
+        (
+            [[0, 0], [0, 1], [0, 2], [1, 2], [2, 2], [3, 2], [3, 1], [3, 0], [2, 0], [1, 0], [0, 0]],
+            [[0, 0], [3, 0], [3, 2], [0, 2]],
+        ),
+    ],
+)
+def test_check_convex_polygon_drops_closing_and_collinear_vertices(vertices, kept):
+    """Issue 27: a closing copy of the first vertex and collinear vertices are dropped, not refused."""
+    out = check_convex_polygon(vertices)
+    assert {tuple(p) for p in out.tolist()} == {tuple(map(float, p)) for p in kept}
+    assert len(out) == len(kept) and Polygon(out).exterior.is_ccw
+    assert Polygon(out).equals(Polygon(vertices))
 
 
 def test_star_pentagon_turns_one_way_only():
@@ -157,9 +178,17 @@ def hull_polygons(draw, size: int = 12, most: int = 16):
 @example([(0, 0), (2, 0), (1, 1), (2, 2), (0, 2)])
 @example([(0, 0), (3, 0), (3, 3), (0, 3)])
 def test_check_convex_polygon_agrees_with_shapely(pts):
-    """Accepted iff the ring is simple, equals its convex hull, and no vertex is redundant."""
-    v = np.array(pts, dtype=float)
-    distinct = len({tuple(p) for p in pts}) == len(pts)
+    """Accepted iff the ring is simple and equals its convex hull; the output has no redundant vertex.
+
+    A closing copy of the first vertex and collinear vertices are dropped (issue 27), so the
+    output's vertices are the hull's (GEOS drops collinear points from a hull).
+    """
+    if len(pts) > 3 and pts[0] == pts[-1]:
+        ring = pts[:-1]  # a closing copy: dropped
+    else:
+        ring = pts
+    v = np.array(ring, dtype=float)
+    distinct = len({tuple(p) for p in ring}) == len(ring)
     poly = Polygon(v)
     hull = shapely.convex_hull(shapely.MultiPoint(v))
     oracle = (
@@ -167,16 +196,16 @@ def test_check_convex_polygon_agrees_with_shapely(pts):
         and poly.is_valid
         and poly.area > 0
         and hull.geom_type == "Polygon"
-        and len(hull.exterior.coords) - 1 == len(pts)  # GEOS drops collinear points
         and abs(poly.area - hull.area) < 1e-12
     )
     try:
-        out = check_convex_polygon(v)
+        out = check_convex_polygon(pts)
     except ValueError:
         assert not oracle
     else:
         assert oracle
         assert Polygon(out).exterior.is_ccw and Polygon(out).equals(poly)
+        assert len(out) == len(hull.exterior.coords) - 1  # no collinear vertex left
 
 
 # -- enlargement ----------------------------------------------------------------------
@@ -421,7 +450,7 @@ CASES = [
     (("obstacles", 1, 2, 0), "8", r"obstacles\[1\] vertex 2\[0\] must be a number"),
     (("obstacles", 1, 2), [9, 0.5], r"obstacles\[1\]: vertex 2 repeats vertex 1"),
     (("obstacles", 0, 2), [3, 3], r"obstacles\[0\]: not a simple .* edges leaving vertex 1 and vertex 3"),
-    (("obstacles", 0, 1), [5, 3], r"obstacles\[0\]: vertex 1 \[5.0, 3.0\] is collinear"),
+    (("obstacles", 1), [[7, 0.5], [8, 0.5], [9, 0.5]], r"obstacles\[1\]: degenerate polygon"),
     (("obstacles", 1), [[7, 0.5], [9, 0.5]], r"obstacles\[1\]: a polygon needs at least 3 vertices"),
     (("start",), [4.5, 3.0, 0], r"start pose .* collides with obstacles\[0\]"),
     (("start",), [3.0, 3.0, 0], r"start pose .* collides with obstacles\[0\]"),  # front reaches 4.0 - 0.2

@@ -87,6 +87,13 @@ GROUPS: list[tuple[str, str, list[str]]] = [
         ["PaperOptions", "DefaultOptions", "LatticeOptions", "RefineOptions"],
     ),
     (
+        "Beyond the paper: maps",
+        "A robot's map as obstacles: a Floor holds the obstacles as given and as convex pieces "
+        "and the walls; from an occupancy grid its pieces cover every occupied cell. "
+        "load_ros_map reads a ROS map_server YAML file and its image.",
+        ["Floor", "load_ros_map"],
+    ),
+    (
         "Beyond the paper: measuring any planner's path",
         "One yardstick for segplan's plans and other planners' paths (front and rear length, "
         "curvature, clearance, a dense collision check).",

@@ -11,8 +11,11 @@ Minkowski sum of the whole polygon with the disk, which is the union of the piec
 Method
 ------
 1. A polygon that :func:`segplan.floor.geometry.check_convex_polygon` accepts is returned as
-   the single piece, unchanged (convex input gives exactly the scenario it always gave).
-2. Otherwise the vertices are checked (shape, finite, no repeated vertex), then the ring
+   the single piece, without a closing copy of its first vertex and without collinear
+   vertices (issue 27: dropped, no longer refused; convex input that was accepted before
+   gives exactly the scenario it always gave).
+2. Otherwise the vertices are checked (shape, finite, no repeated vertex other than a
+   closing copy of the first one, which is dropped), then the ring
    must be *simple* (shapely's ``is_valid``; a self-intersection is reported with the
    vertices whose edges meet there) with nonzero area.
 3. shapely's constrained Delaunay triangulation (``shapely.constrained_delaunay_triangles``,
@@ -30,7 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .geometry import ANGLE_TOL, LENGTH_TOL, _area2, check_convex_polygon
+from .geometry import ANGLE_TOL, LENGTH_TOL, _area2, check_convex_polygon, open_ring
 
 __all__ = ["as_outlines", "convex_pieces", "decompose"]
 
@@ -87,7 +90,8 @@ def convex_pieces(vertices, where: str = "polygon") -> list[np.ndarray]:
     Parameters
     ----------
     vertices : array_like, shape (k, 2)
-        The polygon's vertices in order, either orientation, not closed.
+        The polygon's vertices in order, either orientation; a closing copy of the first
+        vertex and collinear vertices are dropped.
     where : str
         Names the polygon in error messages (e.g. ``"obstacles[3]"``).
 
@@ -119,17 +123,19 @@ def decompose(vertices, where: str = "polygon") -> tuple[np.ndarray, list[np.nda
     Parameters
     ----------
     vertices : array_like, shape (k, 2)
-        The polygon's vertices in order, either orientation, not closed. Collinear
-        vertices are allowed in a non-convex polygon (they vanish from the pieces); a
-        polygon whose boundary turns one way only (convex, or a star) is decided by
-        :func:`check_convex_polygon` as it always was (collinear vertices refused).
+        The polygon's vertices in order, either orientation; a closing copy of the first
+        vertex at the end is dropped. Collinear vertices are allowed (they vanish from
+        the pieces; a non-convex outline keeps them); a polygon whose boundary turns one
+        way only (convex, or a star) is decided by :func:`check_convex_polygon`, which
+        drops its collinear vertices.
     where : str
         Names the polygon in error messages.
 
     Returns
     -------
     outline : ndarray (k, 2)
-        The polygon, counter-clockwise (a new array).
+        The polygon, counter-clockwise (a new array), without a closing copy of the first
+        vertex (and, if convex, without collinear vertices).
     pieces : list of ndarray (n, 2)
         Counter-clockwise strictly convex pieces with disjoint interiors whose union is
         the polygon; if the polygon is convex, one piece: ``outline`` itself.
@@ -173,13 +179,17 @@ def decompose(vertices, where: str = "polygon") -> tuple[np.ndarray, list[np.nda
 
 
 def _check_vertices(vertices, where: str) -> np.ndarray | None:
-    """``(k, 2)`` finite floats, k >= 3, no repeated vertex; None where the convex check said why."""
+    """``(k, 2)`` finite floats, k >= 3, no repeated vertex (a closing copy of the first dropped).
+
+    None where the convex check said why.
+    """
     try:
         v = np.array(vertices, dtype=float)
     except (TypeError, ValueError, OverflowError):
         return None
     if v.ndim != 2 or v.shape[1] != 2 or len(v) < 3 or not np.all(np.isfinite(v)):
         return None
+    v = open_ring(v)
     if len(np.unique(v, axis=0)) != len(v):
         return None
     scale = float(np.abs(v).max()) or 1.0

@@ -36,12 +36,17 @@ shipped industrial floor.
 
 Tolerances (stated)
 -------------------
-Polygons: a turn within ``ANGLE_TOL = 1e-9`` rad of 0 or pi is a collinear vertex; an
-edge shorter than ``LENGTH_TOL = 1e-12`` times the largest coordinate magnitude repeats a
-vertex; exact duplicates anywhere are repeated vertices. These are the tolerances the
-scenario files always used (:mod:`segplan.floor.scenario` before issue 11), the stricter of the
-two validators then in the package: every shipped scenario, notebook and test polygon
-passes them. Touching: ``TOUCH_RTOL = 1e-9`` times the size of the scene (the segment's
+Polygons: a turn within ``ANGLE_TOL = 1e-9`` rad of 0 is a collinear vertex (the boundary
+goes straight through it), one within ``ANGLE_TOL`` of pi doubles back; an edge shorter
+than ``LENGTH_TOL = 1e-12`` times the largest coordinate magnitude repeats a vertex; exact
+duplicates anywhere are repeated vertices. These are the tolerances the scenario files
+always used (:mod:`segplan.floor.scenario` before issue 11), the stricter of the two
+validators then in the package: every shipped scenario, notebook and test polygon passes
+them. Since issue 27 two of them are dropped instead of refused (:func:`open_ring`): a
+closing copy of the first vertex at the end (GeoJSON and WKT rings, CAD exports) and
+collinear vertices (every union of grid cells has them); a polygon that doubles back, a
+repeated vertex elsewhere, zero area, a self-intersection and non-finite numbers are still
+refused. Touching: ``TOUCH_RTOL = 1e-9`` times the size of the scene (the segment's
 length, the polygon's radius, their distance and the coordinates' magnitude) counts as
 touching, in every pose test of the planner and of scenarios alike, the tolerance of the
 swept-segment test :func:`segplan.floor.collision.collides`: a segment and a polygon are apart
@@ -68,6 +73,7 @@ __all__ = [
     "TOUCH_RTOL",
     "as_polygon",
     "check_bounds",
+    "open_ring",
     "check_convex_polygon",
     "edge_list",
     "enlarge_polygon",
@@ -141,36 +147,70 @@ def check_bounds(bounds, name: str = "bounds") -> Bounds:
 
 
 # -- convex polygons ------------------------------------------------------------------
+def open_ring(v: np.ndarray) -> np.ndarray:
+    """``v`` without a closing copy of its first vertex (the last vertex, equal up to rounding).
+
+    GeoJSON and WKT rings, shapely's ``exterior.coords`` and many CAD exports repeat the first
+    vertex at the end; that copy is no vertex of the polygon and is dropped (issue 27).
+    "Equal up to rounding": the closing edge is shorter than ``LENGTH_TOL`` times the largest
+    coordinate magnitude, the tolerance of a repeated vertex. ``v`` is a finite ``(k, 2)``
+    array; a ring of at most 3 vertices is returned as it is (its repeat is refused later).
+    """
+    if len(v) <= 3:
+        return v
+    scale = float(np.abs(v).max())
+    w = v / scale if scale > 0.0 else v  # no overflow for huge inputs
+    if float(np.hypot(*(w[-1] - w[0]))) <= LENGTH_TOL:
+        return v[:-1]
+    return v
+
+
+def _turns(w: np.ndarray) -> np.ndarray:
+    """Signed exterior angle at each vertex of the closed ring ``w`` (from edge ``i-1`` to edge ``i``)."""
+    edges = _edges(w)  # edge i: w[i] -> w[i+1]
+    prev = np.concatenate((edges[-1:], edges[:-1]))  # edge into vertex i
+    cross = prev[:, 0] * edges[:, 1] - prev[:, 1] * edges[:, 0]
+    dot = np.einsum("ij,ij->i", prev, edges)
+    return np.arctan2(cross, dot)
+
+
 def check_convex_polygon(vertices, where: str = "polygon") -> np.ndarray:
-    """Validate a strictly convex simple polygon and return it counter-clockwise.
+    """Validate a convex simple polygon and return it strictly convex, counter-clockwise.
 
     Parameters
     ----------
     vertices : array_like, shape (k, 2)
-        The vertices in order, either orientation, without repeating the first one.
+        The vertices in order, either orientation; the ring may be closed (the first vertex
+        repeated at the end) and may have collinear vertices: both are dropped.
     where : str
         Names the polygon in error messages (e.g. ``"world.json: obstacles[3]"``).
 
     Returns
     -------
-    ndarray, shape (k, 2)
-        A new float array, counter-clockwise. Vertex indices in error messages refer to
-        the input order.
+    ndarray, shape (m, 2)
+        A new float array, counter-clockwise, strictly convex: the input's vertices without
+        a closing copy of the first one (:func:`open_ring`) and without the vertices the
+        boundary goes straight through (turn within ``ANGLE_TOL`` of 0; dropped repeatedly,
+        so a straight run of any length leaves its two ends), ``m <= k``. Vertex indices in
+        error messages refer to the input order.
 
     Raises
     ------
     ValueError
-        Fewer than 3 vertices, wrong shape, non-finite numbers, a repeated vertex, a
-        vertex collinear with its neighbours (including a degenerate, zero-area polygon
-        and an edge doubling back), a non-convex polygon (turns of both signs), or a
-        self-intersecting one whose turns all have one sign but add up to a multiple of
-        2 pi other than one (e.g. a star pentagon: 4 pi).
+        Fewer than 3 vertices, wrong shape, non-finite numbers, a repeated vertex (other
+        than a closing copy of the first), a degenerate, zero-area polygon (all vertices
+        collinear), an edge doubling back (a turn within ``ANGLE_TOL`` of pi), a non-convex
+        polygon (turns of both signs), or a self-intersecting one whose turns all have one
+        sign but add up to a multiple of 2 pi other than one (e.g. a star pentagon: 4 pi).
 
     Notes
     -----
     The turn at vertex ``i`` is the signed angle from edge ``v[i] - v[i-1]`` to edge
     ``v[i+1] - v[i]``. A closed polygon is convex and simple iff all turns are nonzero,
     of one sign, and add up to ``+-2 pi``. Collinear means within ``ANGLE_TOL`` radians.
+    Dropping a collinear vertex moves the boundary by at most ``ANGLE_TOL`` times the
+    length of its edges (exactly nothing for a vertex on the segment of its neighbours).
+    Until issue 27 a collinear vertex and a closing copy were refused.
     """
     try:
         v = np.array(vertices, dtype=float)
@@ -184,14 +224,15 @@ def check_convex_polygon(vertices, where: str = "polygon") -> np.ndarray:
     bad = np.flatnonzero(~np.all(np.isfinite(v), axis=1))
     if bad.size:
         raise ValueError(f"{where}: vertex {bad[0]}: coordinates must be finite, got {v[bad[0]].tolist()}")
+    v = open_ring(v)
+    k = len(v)
     # repeated vertices: exact duplicates anywhere, near-duplicates between neighbours
     _, first, inverse = np.unique(v, axis=0, return_index=True, return_inverse=True)
     dup = np.flatnonzero(first[inverse.ravel()] != np.arange(k))
     if dup.size:
         j = int(dup[0])
         i = int(first[inverse.ravel()[j]])
-        hint = " (do not close the ring by repeating the first vertex)" if (i, j) == (0, k - 1) else ""
-        raise ValueError(f"{where}: vertex {j} repeats vertex {i} {v[j].tolist()}{hint}")
+        raise ValueError(f"{where}: vertex {j} repeats vertex {i} {v[j].tolist()}")
     scale = float(np.abs(v).max())
     w = v / scale if scale > 0.0 else v  # turns are scale invariant; no overflow for huge inputs
     edges = _edges(w)  # edge i: v[i] -> v[i+1]
@@ -199,19 +240,27 @@ def check_convex_polygon(vertices, where: str = "polygon") -> np.ndarray:
     if short.size:
         i = int(short[0])
         raise ValueError(f"{where}: vertex {(i + 1) % k} repeats vertex {i} up to rounding")
-    prev = np.concatenate((edges[-1:], edges[:-1]))  # edge into vertex i
-    cross = prev[:, 0] * edges[:, 1] - prev[:, 1] * edges[:, 0]
-    dot = np.einsum("ij,ij->i", prev, edges)
-    turn = np.arctan2(cross, dot)  # signed exterior angle at vertex i
-    flat = np.flatnonzero((np.abs(turn) <= ANGLE_TOL) | (np.abs(turn) >= math.pi - ANGLE_TOL))
-    if flat.size == k:
+    turn = _turns(w)
+    straight = np.abs(turn) <= ANGLE_TOL
+    back = np.abs(turn) >= math.pi - ANGLE_TOL
+    if np.all(straight | back):
         raise ValueError(f"{where}: degenerate polygon, all vertices are collinear (zero area)")
-    if flat.size:
-        i = int(flat[0])
-        how = "doubles back" if abs(turn[i]) > 0.5 * math.pi else "is collinear with its neighbours"
+    if back.any():
+        i = int(np.flatnonzero(back)[0])
         raise ValueError(
-            f"{where}: vertex {i} {v[i].tolist()} {how}; the polygon must be strictly convex (remove it)"
+            f"{where}: vertex {i} {v[i].tolist()} doubles back; "
+            "the polygon must be strictly convex (remove it)"
         )
+    keep = np.arange(k)  # input indices of the vertices kept
+    while straight.any():  # collinear vertices: dropped, then the turns of the rest again
+        keep = keep[~straight]
+        if len(keep) < 3:
+            raise ValueError(f"{where}: degenerate polygon, all vertices are collinear (zero area)")
+        turn = _turns(w[keep])
+        straight = np.abs(turn) <= ANGLE_TOL
+        if np.any(np.abs(turn) >= math.pi - ANGLE_TOL):
+            raise ValueError(f"{where}: degenerate polygon, all vertices are collinear (zero area)")
+    v, w = v[keep], w[keep]
     total = float(turn.sum())
     sign = math.copysign(1.0, total) if abs(total) > math.pi else math.copysign(1.0, _area2(w))
     wrong = np.flatnonzero(np.sign(turn) != sign)
@@ -219,8 +268,9 @@ def check_convex_polygon(vertices, where: str = "polygon") -> np.ndarray:
         right = np.flatnonzero(np.sign(turn) == sign)
         sense = ("counter-clockwise", "clockwise") if sign > 0 else ("clockwise", "counter-clockwise")
         raise ValueError(
-            f"{where}: not convex: the boundary turns {sense[1]} at vertex {wrong[0]} {v[wrong[0]].tolist()} "
-            f"but {sense[0]} at vertex {right[0]} (non-convex or self-intersecting)"
+            f"{where}: not convex: the boundary turns {sense[1]} at vertex {keep[wrong[0]]} "
+            f"{v[wrong[0]].tolist()} but {sense[0]} at vertex {keep[right[0]]} "
+            "(non-convex or self-intersecting)"
         )
     winding = round(abs(total) / TWO_PI)
     if winding != 1:

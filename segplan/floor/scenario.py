@@ -33,10 +33,10 @@ Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width
 ``max_steer_deg`` 45, ``bounds`` none. Any other key is an error, so is a repeated key.
 Polygons may be given in either orientation and are stored counter-clockwise; nothing
 else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
-``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A vertex that is
-repeated (also a closing copy of the first one) is an error, as are self-intersecting
-and zero-area polygons, a vertex collinear with its neighbours in a convex polygon,
-NaN/Infinity literals and numbers that overflow to infinity.
+``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A closing copy of
+the first vertex and vertices collinear with their neighbours are dropped (issue 27;
+refused before). A vertex repeated elsewhere is an error, as are self-intersecting and
+zero-area polygons, NaN/Infinity literals and numbers that overflow to infinity.
 
 A pose collides when its segment A->B touches an enlarged obstacle (closed sets:
 touching is a collision); it is out of bounds unless the whole segment lies strictly
@@ -59,7 +59,6 @@ from pathlib import Path
 import numpy as np
 
 from ..model.pose import Pose, as_pose, check_length
-from .decompose import as_outlines, decompose
 from .geometry import (
     DEFAULT_MAX_ARC,
     check_bounds,
@@ -67,6 +66,7 @@ from .geometry import (
     finite_number,
     pose_conflict,
 )
+from .maps import WORLD_LIMIT, Floor
 
 __all__ = [
     "with_clearance",
@@ -83,10 +83,10 @@ __all__ = [
     "save_scenario",
     "scenario_from_dict",
 ]
-#: Scenario coordinates and lengths must not exceed this magnitude (the world's scale,
-#: metres in files); L and a nonzero half_width must be at least MIN_LENGTH (a smaller
-#: half_width would enlarge polygons by less than the spacing of floats near them).
-WORLD_LIMIT = 1e6
+#: Scenario coordinates and lengths must not exceed WORLD_LIMIT (the world's scale, metres
+#: in files; defined with the floor, :data:`segplan.floor.maps.WORLD_LIMIT`); L and a nonzero
+#: half_width must be at least MIN_LENGTH (a smaller half_width would enlarge polygons by
+#: less than the spacing of floats near them).
 MIN_LENGTH = 1e-6
 
 REQUIRED_KEYS = ("L", "start", "goal", "obstacles")
@@ -245,7 +245,7 @@ def make_scenario(
     robot: Robot,
     start,
     goal,
-    obstacles: Sequence = (),
+    obstacles: Sequence | Floor = (),
     bounds: Sequence[float] | None = None,
     *,
     name: str = "",
@@ -255,6 +255,11 @@ def make_scenario(
     source: str = "<python>",
 ) -> Scenario:
     """Validate a planning problem and build a :class:`Scenario` (Python API: radians).
+
+    ``obstacles``: simple polygons (see the module docstring; made into a floor by
+    :meth:`segplan.Floor.from_polygons`) or a :class:`segplan.Floor` (a map from
+    :func:`segplan.load_ros_map` or :meth:`segplan.Floor.from_occupancy`), whose bounds are
+    used when ``bounds`` is None.
 
     Raises
     ------
@@ -278,6 +283,8 @@ def make_scenario(
         raise ScenarioError(f"{source}: {exc}") from None
     for label, pose in (("start", start_p), ("goal", goal_p)):
         _check_scale(pose[:2], f"{source}: {label}")
+    if bounds is None and isinstance(obstacles, Floor):
+        bounds = obstacles.bounds
     if bounds is not None:
         try:
             b = check_bounds(bounds)
@@ -287,37 +294,20 @@ def make_scenario(
             raise ScenarioError(f"{source}: bounds {list(b)} leave no room for half_width={robot.half_width}")
         _check_scale(b, f"{source}: bounds")
         bounds = b
-    try:
-        items = list(obstacles)
-    except TypeError:
-        raise ScenarioError(
-            f"{source}: obstacles must be a sequence of polygons, got {_brief(obstacles)}"
-        ) from None
-    polys, outlines, outline_of, labels = [], [], [], []
-    for i, item in enumerate(items):
-        where = f"{source}: obstacles[{i}]"
+    if isinstance(obstacles, Floor):
+        floor = obstacles
+    else:
         try:
-            given = as_outlines(item, where)
+            items = list(obstacles)
+        except TypeError:
+            raise ScenarioError(
+                f"{source}: obstacles must be a sequence of polygons, got {_brief(obstacles)}"
+            ) from None
+        try:
+            floor = Floor.from_polygons(items, source=source)
         except ValueError as exc:
             raise ScenarioError(str(exc)) from None
-        for j, p in enumerate(given):
-            at = where if len(given) == 1 else f"{where} part {j}"
-            try:
-                outline, pieces = decompose(p, where=at)
-            except ValueError as exc:
-                raise ScenarioError(str(exc)) from None
-            if np.abs(outline).max() > WORLD_LIMIT:  # the pieces' vertices are the outline's
-                k = int(np.flatnonzero(np.abs(np.asarray(p, dtype=float)).max(axis=1) > WORLD_LIMIT)[0])
-                raise ScenarioError(f"{at} vertex {k}: coordinates exceed +-{WORLD_LIMIT:g}")
-            for q in (outline, *pieces):  # a convex outline is its own piece, the same array
-                q.flags.writeable = False
-            outline_of.extend([len(outlines)] * len(pieces))
-            label = f"obstacles[{i}]" + ("" if len(given) == 1 else f" part {j}")
-            labels.extend(
-                label if len(pieces) == 1 else f"{label} (its convex piece {n})" for n in range(len(pieces))
-            )
-            outlines.append(outline)
-            polys.extend(pieces)
+    polys = floor.obstacles
     enlarged = []
     for p in polys:
         e = enlarge_polygon(p, robot.half_width, max_arc)
@@ -325,7 +315,7 @@ def make_scenario(
         enlarged.append(e)
     sc = Scenario(
         robot, start_p, goal_p, bounds, tuple(polys), tuple(enlarged), name, description, path,
-        tuple(outlines), tuple(outline_of),
+        floor.outlines, floor.outline_of,
     )  # fmt: skip
     for label, pose in (("start", start_p), ("goal", goal_p)):
         conflict = sc.pose_conflict(pose)
@@ -335,7 +325,7 @@ def make_scenario(
                 f"must lie strictly inside the bounds shrunk by half_width, {list(sc.free_bounds)}"
             )
         if conflict is not None:
-            conflict = labels[int(conflict[len("obstacles[") : -1])]  # the obstacle as given
+            conflict = floor.describe(int(conflict[len("obstacles[") : -1]))  # the obstacle as given
             raise ScenarioError(
                 f"{source}: {label} pose {_show(pose)} collides with {conflict} "
                 f"enlarged by half_width={robot.half_width} (segment of length L={robot.L})"

@@ -76,11 +76,13 @@ def plan(
     ----------
     start, goal : (x, y, theta)
         Poses: rear-axle point A and heading (radians).
-    obstacles : sequence of (k, 2) arrays or shapely polygons
+    obstacles : sequence of (k, 2) arrays or shapely polygons, or a Floor
         Simple polygons (either orientation; shapely ``Polygon`` / ``MultiPolygon``
         objects too, without holes); a non-convex one is split into convex pieces
         (:func:`segplan.floor.decompose.convex_pieces`, beyond the paper); enlarged by
-        ``half_width`` off-line.
+        ``half_width`` off-line. Or a :class:`segplan.Floor` (a map:
+        :func:`segplan.load_ros_map`, :meth:`segplan.Floor.from_occupancy`), whose bounds
+        are used when ``bounds`` is None.
     L : float
         Robot length A->B (> 0).
     bounds : (xmin, ymin, xmax, ymax), optional
