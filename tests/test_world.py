@@ -786,3 +786,26 @@ def test_shapely_obstacles_in_make_scenario_and_plan():
 def test_holes_and_self_intersections_are_scenario_errors(obstacle, pattern):
     with pytest.raises(ScenarioError, match=pattern):
         make_scenario(Robot(1.0), (1.0, 1.0, 0.0), (8.0, 4.0, 0.0), [obstacle], (0, 0, 10, 6))
+
+
+@pytest.mark.parametrize("theta", [90.0, -7.0, 2 * math.pi + 1e-9])
+def test_a_heading_beyond_two_pi_is_refused_naming_radians(theta):
+    """Issue 27: goal=(8, 5, 90) meant as degrees was planned as 90 rad; now refused."""
+    robot = Robot(1.0, 0.3)
+    refused = r"goal heading theta=.* rad is beyond 2 pi .*headings are in radians"
+    with pytest.raises(ScenarioError, match=refused):
+        make_scenario(robot, (1.0, 1.0, 0.0), (8.0, 5.0, theta), [], (0.0, 0.0, 10.0, 10.0))
+    make_scenario(robot, (1.0, 1.0, 0.0), (8.0, 5.0, 2 * math.pi), [], (0.0, 0.0, 10.0, 10.0))  # on the edge
+
+
+def test_messages_print_headings_in_degrees():
+    """Issue 27: no-path messages printed headings in radians while files and output use degrees."""
+    from segplan import NoPathError, plan_scenario
+
+    robot = Robot(1.0, 0.3)
+    walls = [[[5, 0], [5.2, 0], [5.2, 10], [5, 10]]]
+    sc = make_scenario(robot, (1.0, 5.0, 0.0), (8.0, 5.0, math.pi / 2), walls, (0.0, 0.0, 10.0, 10.0))
+    for planner in ("lattice", "paper"):
+        message = r"no path from \(x=1, y=5, theta=0 deg\) to \(x=8, y=5, theta=90 deg\)"
+        with pytest.raises(NoPathError, match=message):
+            plan_scenario(sc, planner=planner, max_expansions=200)

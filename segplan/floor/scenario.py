@@ -58,7 +58,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.pose import Pose, as_pose, check_length
+from ..model.pose import Pose, as_pose, check_length, show_pose
 from .geometry import (
     DEFAULT_MAX_ARC,
     check_bounds,
@@ -283,6 +283,12 @@ def make_scenario(
         raise ScenarioError(f"{source}: {exc}") from None
     for label, pose in (("start", start_p), ("goal", goal_p)):
         _check_scale(pose[:2], f"{source}: {label}")
+        if abs(pose.theta) > 2.0 * math.pi:
+            raise ScenarioError(
+                f"{source}: {label} heading theta={pose.theta:g} rad is beyond 2 pi (360 deg): "
+                f"headings are in radians (theta={pose.theta:g} deg would be "
+                f"{math.radians(pose.theta):.6g} rad)"
+            )
     if bounds is None and isinstance(obstacles, Floor):
         bounds = obstacles.bounds
     if bounds is not None:
@@ -339,7 +345,7 @@ def _check_scale(values, where: str) -> None:
 
 
 def _show(p: Pose) -> str:
-    return f"(x={p.x:g}, y={p.y:g}, theta={math.degrees(p.theta):g} deg)"
+    return show_pose(p)
 
 
 # -- files ----------------------------------------------------------------------------

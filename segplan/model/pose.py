@@ -34,6 +34,7 @@ HALF_PI = 0.5 * math.pi
 TWO_PI = 2.0 * math.pi
 
 __all__ = [
+    "show_pose",
     "wrap_fmod",
     "wrap_scalar",
     "HALF_PI",
@@ -114,6 +115,13 @@ def as_pose(p: Sequence[float] | Pose, name: str = "pose") -> Pose:
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"{name} must have finite components, got {tuple(values)}")
     return Pose(*values)
+
+
+def show_pose(p) -> str:
+    """A pose as users read it: ``(x=.., y=.., theta=.. deg)`` (headings in degrees in every
+    message, as in scenario files and the command line's output; issue 27)."""
+    x, y, theta = (float(v) for v in p)
+    return f"(x={x:g}, y={y:g}, theta={math.degrees(theta):g} deg)"
 
 
 def check_length(L: float, name: str = "L") -> float:

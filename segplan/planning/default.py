@@ -21,6 +21,7 @@ Both searches share the context's one validity checker.
 
 from __future__ import annotations
 
+from ..model.pose import show_pose
 from .context import PlanningContext
 from .dubins import dubins_length_scalar
 from .options import DefaultOptions
@@ -84,7 +85,7 @@ def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOption
         return exc
     s, g = ctx.scenario.start, ctx.scenario.goal
     message = (
-        f"no path from {tuple(s)} to {tuple(g)}: the time limit time_limit={options.time_limit:g} s "
+        f"no path from {show_pose(s)} to {show_pose(g)}: the time limit time_limit={options.time_limit:g} s "
         f"was reached (the paper's search, then the lattice); expanded {exc.expanded} states"
     )
     return NoPathError(message, "time", exc.expanded, exc.generated, exc.seconds, exc.best)

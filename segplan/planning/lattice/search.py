@@ -42,7 +42,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...floor.scenario import Scenario
-from ...model.pose import Pose
+from ...model.pose import Pose, show_pose
 from ..context import workspace_of
 from ..links import LinkModel
 from ..plan import NoPathError, Plan, check_limits, check_option, direct_plan, lattice_plan
@@ -294,7 +294,7 @@ def _lattice_search(
         best = lattice_plan(Pose(*start), [], ["start"], 0.0, 0.0, 0, 1, time.perf_counter() - t0, ws.stats)
         fail(
             "exhausted",
-            f"no path from {tuple(start)} to {tuple(goal)}: the goal's free region is not "
+            f"no path from {show_pose(start)} to {show_pose(goal)}: the goal's free region is not "
             f"connected to the start's (grid of {grid.cell:.3g} m cells); no path exists",
             0,
             1,
@@ -362,7 +362,7 @@ def _lattice_search(
             escapable = "both" if outcome == "exhausted" else "goal" if proofs[-1][1] == "enclosed" else ""
             fail(
                 outcome,
-                f"no path from {tuple(start)} to {tuple(goal)}: {what}",
+                f"no path from {show_pose(start)} to {show_pose(goal)}: {what}",
                 expanded_total,
                 len(search.g),
                 best,

@@ -25,7 +25,7 @@ import time
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
-from ...model.pose import Pose
+from ...model.pose import Pose, show_pose
 from ..plan import NoPathError, Plan
 
 if TYPE_CHECKING:  # the search needs only the problem's link_cost, cost_to_go and prepare
@@ -178,7 +178,7 @@ class _Search:
             "time": f"the time limit time_limit={time_limit:g} s was reached",
         }[reason]
         raise NoPathError(
-            f"no path from {tuple(start)} to {tuple(goal)}: {what}; expanded {expanded} nodes, "
+            f"no path from {show_pose(start)} to {show_pose(goal)}: {what}; expanded {expanded} nodes, "
             f"generated {len(self.poses)}; the closest node explored is {self.dist[best]:.3g} from the goal",
             reason,
             expanded,
