@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -370,7 +371,8 @@ def _draw(path: str, scenario, unions, title: str) -> None:
     plot.plot_pose(scenario.start, scenario.L, ax, color="tab:green", label="start")
     plot.plot_pose(scenario.goal, scenario.L, ax, color="tab:red", label="goal")
     ax.set_title(title)
-    ax.legend(loc="best", fontsize="small")
+    # beside the floor, never over a wall or an obstacle
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", borderaxespad=0.0)
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
 
@@ -379,17 +381,71 @@ def _animate(path: str, scenario, result: Plan, title: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    from .viz.animate import animate_plan, save_gif
+    from .viz.animate import animate_plan, save_gif, to_html
 
-    save_gif(animate_plan(result, scenario, title=title), path)
+    anim = animate_plan(result, scenario, title=title)
+    if Path(path).suffix.lower() == ".html":
+        Path(path).write_text(to_html(anim), encoding="utf-8")
+    else:
+        save_gif(anim, path)
+
+
+#: The figure formats of --out (matplotlib's, without a display) and the animation formats
+#: of --animate (a GIF through Pillow, or a self-contained HTML page).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp")
+ANIMATION_SUFFIXES = (".gif", ".html")
+#: Exit status after Ctrl-C (128 + SIGINT, the shell's convention).
+EXIT_INTERRUPTED = 130
+#: Exit status when the reader of the output went away (128 + SIGPIPE, the shell's convention).
+EXIT_BROKEN_PIPE = 141
+
+
+def _check_outputs(args) -> str | None:
+    """The error line for an --out or --animate file of a kind this command cannot write, or
+    None; checked before planning, so a long plan is not lost to a typo."""
+    for option, path, kinds, what in (
+        ("--out", args.out, FIGURE_SUFFIXES, "a figure"),
+        ("--animate", args.animate, ANIMATION_SUFFIXES, "an animation"),
+    ):
+        if path and Path(path).suffix.lower() not in kinds:
+            return f"{option} {path}: cannot write {what} of this type; use one of {', '.join(kinds)}"
+    return None
+
+
+def _planner_text(result: Plan, args) -> str:
+    """Which planner made the plan, as a figure title says it."""
+    if result.planner == "paper":
+        return f"the paper's search, heuristic {args.heuristic}"
+    if result.version == "lattice":
+        return "default planner (lattice)"
+    return f"default planner (the paper's search, heuristic {args.heuristic})"
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``segplan`` command; returns the exit status."""
+    """Entry point of the ``segplan`` command; returns the exit status (0 a plan, 1 no plan,
+    2 bad input, 130 interrupted by Ctrl-C). A closed output pipe (``segplan plan X | head``)
+    ends it quietly, the Unix way."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("segplan: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:
+        # the reader went away: nothing more can be printed; no traceback at exit either
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
+
+
+def _main(argv: list[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command is None:
         parser.print_help()
+        return EXIT_BAD_INPUT
+    bad = _check_outputs(args)
+    if bad:
+        print(f"segplan: error: {bad}", file=sys.stderr)
         return EXIT_BAD_INPUT
     try:
         scenario = _scenario(args)
@@ -442,7 +498,7 @@ def main(argv: list[str] | None = None) -> int:
                 args.out,
                 scenario,
                 result.unions,
-                f"{name}: LONGD {result.cost:.2f} m, heuristic {args.heuristic}",
+                f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}",
             )
         except OSError as exc:
             print(f"segplan: error: cannot write {args.out}: {exc.strerror or exc}", file=sys.stderr)
@@ -451,7 +507,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"figure      {args.out}")
     if args.animate:
         try:
-            _animate(args.animate, scenario, result, f"{name}: LONGD {result.cost:.2f} m")
+            title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
+            _animate(args.animate, scenario, result, title)
         except OSError as exc:
             print(f"segplan: error: cannot write {args.animate}: {exc.strerror or exc}", file=sys.stderr)
             return EXIT_BAD_INPUT

@@ -116,3 +116,68 @@ def test_console_script_entry_point():
     run = subprocess.run([*cmd, "plan", "no/such/file.json"], capture_output=True, text=True, timeout=120)
     assert run.returncode == EXIT_BAD_INPUT
     assert "Traceback" not in run.stderr and "no/such/file.json" in run.stderr
+
+
+# -- command-line hygiene (issue 27) ------------------------------------------------------------
+@pytest.mark.parametrize(
+    ("option", "name", "kinds"),
+    [("--out", "p.txt", ".png"), ("--animate", "p.mp4", ".gif, .html"), ("--animate", "p.png", ".gif")],
+)
+def test_a_wrong_output_type_is_one_line_before_planning(tmp_path, capsys, monkeypatch, option, name, kinds):
+    """Before: a traceback and exit 1 (the "no path" code) after planning; --animate x.png wrote
+    one frame. Now: one line, exit 2, and no planning."""
+    import segplan.cli as cli
+
+    def no_planning(*args, **kwargs):
+        raise AssertionError("planned before refusing the output file")
+
+    monkeypatch.setattr(cli, "plan_scenario", no_planning)
+    assert main(["plan", SINGLE, option, str(tmp_path / name)]) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"segplan: error: {option} ") and kinds in err[0]
+    assert not (tmp_path / name).exists()
+
+
+def test_an_animation_as_an_html_page(tmp_path, capsys):
+    page = tmp_path / "plan.html"
+    assert main(["plan", SINGLE, "--animate", str(page)]) == 0
+    text = page.read_text(encoding="utf-8")
+    assert "<script" in text and "data:image/png;base64" in text
+    assert "<link" not in text and "http" not in text  # plays offline (segplan.viz.animate.to_html)
+
+
+def test_ctrl_c_is_one_line_and_exit_130(capsys, monkeypatch):
+    import segplan.cli as cli
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "plan_scenario", interrupted)
+    assert main(["plan", SINGLE]) == cli.EXIT_INTERRUPTED == 130
+    assert capsys.readouterr().err == "segplan: interrupted\n"
+
+
+def test_a_closed_pipe_ends_quietly():
+    """``segplan plan X | head -1``: before, a BrokenPipeError traceback."""
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "segplan", "plan", SINGLE, "--json"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        bufsize=0,
+    )
+    first = proc.stdout.read(1)  # the reader takes one byte and goes away
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    proc.wait(timeout=120)
+    assert first == b"{"
+    assert proc.returncode in (0, 141) and "Traceback" not in err and "BrokenPipe" not in err, err
+
+
+def test_the_figure_title_names_the_planner(monkeypatch, tmp_path):
+    import segplan.cli as cli
+
+    titles = []
+    monkeypatch.setattr(cli, "_draw", lambda path, scenario, unions, title: titles.append(title))
+    assert main(["plan", "turn_around", "--out", str(tmp_path / "a.png")]) == 0
+    assert main(["plan", "turn_around", "--planner", "paper", "--out", str(tmp_path / "b.png")]) == 0
+    assert "default planner (lattice)" in titles[0] and "the paper's search, heuristic a" in titles[1]
