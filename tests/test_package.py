@@ -110,7 +110,8 @@ def test_license_and_citation():
 
     import yaml
 
-    assert tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["license"]["text"] == "MIT"
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    assert project["license"] == "MIT" and project["license-files"] == ["LICENSE"]  # PEP 639
     cff = yaml.safe_load((ROOT / "CITATION.cff").read_text())
     assert cff["license"] == "MIT" and cff["version"] == segplan.__version__
     paper = cff["references"][0]
@@ -151,6 +152,14 @@ def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
     with zipfile.ZipFile(wheel) as zf:
         assert "segplan/scenarios/fig5_example1.json" in zf.namelist()
         assert "segplan/scenarios/beyond_the_paper/l_shaped_rack.json" in zf.namelist()
+        assert "segplan/py.typed" in zf.namelist()  # typed (PEP 561)
+        meta = zf.read(next(n for n in zf.namelist() if n.endswith(".dist-info/METADATA"))).decode()
+    # the core requirements are what planning imports; the studies' are an extra (issue 27)
+    requires = [line for line in meta.splitlines() if line.startswith("Requires-Dist:")]
+    core = [r for r in requires if "extra ==" not in r]
+    assert not any(name in r for r in core for name in ("sympy", "pandas", "tqdm", "jupyter"))
+    assert any("sympy" in r and 'extra == "study"' in r for r in requires)
+    assert "License-Expression: MIT" in meta
     env_dir = tmp_path / "venv"
     # the dependencies (numpy, scipy, ...) from this environment, without its own segplan
     # (a plain path line: the .pth files there, e.g. an editable segplan, are not processed)
@@ -188,3 +197,16 @@ def test_wheel_installs_in_a_clean_venv_and_plans(tmp_path):
     where, _, rack_json = rack.stdout.partition("\n")
     assert where.startswith(site), where  # the installed copy, not this tree
     assert json.loads(rack_json)["found"] is True
+
+
+def test_import_segplan_needs_only_the_core_requirements():
+    """Planning imports none of the studies' packages (issue 27: a 523 MB venv for a planner)."""
+    code = (
+        "import sys, math, segplan; "
+        "segplan.plan((0, 0, 0), (6, 1, 0.2), [], 1.0, bounds=(-2, -3, 9, 4), half_width=0.2); "
+        "print(sorted(m for m in ('sympy', 'pandas', 'tqdm') if m in sys.modules))"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+    assert run.stdout.strip() == "[]"
