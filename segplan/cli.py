@@ -32,6 +32,7 @@ from .planning.api import plan_scenario
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
 from .planning.trajectory import DEFAULT_STEP
+from .viz.metrics import plan_clearance
 
 __all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
 
@@ -327,6 +328,47 @@ def _scenario(args) -> Scenario:
     return make_scenario(robot, start, goal, floor, name=Path(args.scenario).stem, source=args.scenario)
 
 
+def _what_the_plan_is(result: Plan, scenario: Scenario) -> dict:
+    """What a user needs to know of the plan besides its nodes (issue 27): which planner made
+    it, the front and rear path lengths, the clearance beyond the half-width (sampled every
+    centimetre), the largest curvature against the limit, the steering jumps at the nodes."""
+    facts = result.facts(scenario.robot.max_steer)
+    jumps = [float(j) for j in facts.steer_jump[1:-1]]
+    return {
+        "made_by": (
+            "the paper's search"
+            if result.planner == "paper"
+            else "the default planner: its lattice"
+            if result.version == "lattice"
+            else "the default planner: the paper's search's plan, kept as the shorter"
+        ),
+        "front_length": facts.front_length,
+        "rear_length": facts.rear_length,
+        "clearance": plan_clearance(result, scenario, 0.01),
+        "max_curvature": facts.max_curvature,
+        "curvature_limit": facts.curvature_limit,
+        "within_limit": facts.within_limit,
+        "steering_jumps_deg": [math.degrees(j) for j in jumps],
+    }
+
+
+def _format_facts(facts: dict) -> list[str]:
+    jumps = facts["steering_jumps_deg"]
+    return [
+        f"made by     {facts['made_by']}",
+        f"paths       front wheel {facts['front_length']:.3f} m, rear axle {facts['rear_length']:.3f} m",
+        f"clearance   {1000.0 * facts['clearance']:.1f} mm beyond the half-width (sampled every 1 cm)",
+        f"curvature   at most {facts['max_curvature']:.4f} 1/m, limit {facts['curvature_limit']:.4f} 1/m",
+        "steering    "
+        + (
+            "no node: one union"
+            if not jumps
+            else f"jumps at the nodes {', '.join(f'{j:+.1f}' for j in jumps)} deg "
+            f"(largest {max(abs(j) for j in jumps):.1f} deg; a controller re-steers there)"
+        ),
+    ]
+
+
 def _format_plan(result: Plan, name: str) -> str:
     lines = [
         f"scenario    {name}",
@@ -488,10 +530,12 @@ def _main(argv: list[str] | None) -> int:
     except ValueError as exc:
         print(f"segplan: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    facts = _what_the_plan_is(result, scenario)
     if args.json:
-        print(json.dumps({"scenario": name, "found": True, **result.to_dict(), **written}, indent=2))
+        out = {"scenario": name, "found": True, **result.to_dict(), "plan_facts": facts, **written}
+        print(json.dumps(out, indent=2))
     else:
-        print("\n".join([_format_plan(result, name), *written_lines]))
+        print("\n".join([_format_plan(result, name), *_format_facts(facts), *written_lines]))
     if args.out:
         try:
             _draw(

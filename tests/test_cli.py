@@ -181,3 +181,28 @@ def test_the_figure_title_names_the_planner(monkeypatch, tmp_path):
     assert main(["plan", "turn_around", "--out", str(tmp_path / "a.png")]) == 0
     assert main(["plan", "turn_around", "--planner", "paper", "--out", str(tmp_path / "b.png")]) == 0
     assert "default planner (lattice)" in titles[0] and "the paper's search, heuristic a" in titles[1]
+
+
+def test_the_output_says_what_the_plan_is(capsys):
+    """Issue 27: which planner made it, both path lengths, the clearance, the curvature against
+    the limit and the steering jumps, in the text and under --json (checked against the plan's
+    own facts and the dense path measure)."""
+    import segplan
+
+    assert main(["plan", "fig5_example1", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    facts = data["plan_facts"]
+    sc = segplan.load_scenario("fig5_example1")
+    plan = segplan.plan_scenario(sc)
+    assert facts["front_length"] == pytest.approx(plan.cost, rel=1e-8)  # LONGD, [1]
+    measured = segplan.measure_scenario_path(segplan.plan_poses(plan, 0.01), sc)
+    assert facts["rear_length"] == pytest.approx(measured.rear_length, rel=1e-3)
+    assert facts["clearance"] == pytest.approx(measured.clearance, abs=1e-9) and facts["clearance"] >= 0
+    assert facts["within_limit"] is True and facts["max_curvature"] <= facts["curvature_limit"]
+    assert len(facts["steering_jumps_deg"]) == len(plan.nodes) - 2
+    assert "the default planner" in facts["made_by"]
+    assert main(["plan", "fig5_example1"]) == 0
+    out = capsys.readouterr().out
+    heads = ("made by", "paths       front wheel", "clearance", "curvature   at most", "steering    jumps")
+    for head in heads:
+        assert head in out, head

@@ -198,7 +198,7 @@ def test_json_output_fields(capsys):
     status, data = run_json(capsys, "fig5_example1", "--planner", "paper")
     assert status == 0
     expected = set(segplan.plan_scenario(load_scenario("fig5_example1"), planner="paper").to_dict())
-    assert set(data) == {"scenario", "found"} | expected
+    assert set(data) == {"scenario", "found", "plan_facts"} | expected  # plan_facts: the CLI's (issue 27)
     assert data["found"] is True and data["scenario"] == "fig5_example1"
     assert data["planner"] == "paper" and data["options"]["max_expansions"] == 3000  # what made it
     assert len(data["nodes"]) == len(data["kinds"]) == len(data["alphas_deg"]) + 1
