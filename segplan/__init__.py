@@ -1,5 +1,14 @@
 """segplan: Campoy et al. (1989), trajectory planning for an oriented-segment robot.
 
+A first plan, and a trajectory a controller can drive::
+
+    import math, segplan
+
+    scenario = segplan.load_scenario("fig5_example1")  # or make_scenario(...), load_ros_map(...)
+    plan = segplan.plan_scenario(scenario)             # nodes, unions (cubics), cost (LONGD)
+    law = plan.trajectory(v_max=1.0, a_max=0.5, a_lat_max=0.5, steer_rate_max=math.radians(30))
+    law.to_csv("trajectory.csv")
+
 The stable API is ``segplan.__all__``: these names keep their signatures across
 releases. The modules' own exported names (each module's ``__all__``) are the library's
 parts, for studies and extensions; they may move between releases. Names with a leading

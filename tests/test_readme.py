@@ -74,3 +74,13 @@ def test_commands_block_is_written_from_the_stored_run():
     assert all(c["seconds"] > 0 for c in stored["commands"]) and "book_build_seconds" in stored["commands"][0]
     block = README.split(script.COMMANDS_START, 1)[1].split(script.COMMANDS_END, 1)[0]
     assert block.strip() == script.commands_block(stored).strip()
+
+
+def test_the_first_plan_example_runs(tmp_path, monkeypatch):
+    """The README's first Python example, as typed, plans and writes its trajectory."""
+    section = README.split("## Install and a first plan", 1)[1].split("\n## ", 1)[0]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    header = (tmp_path / "trajectory.csv").read_text().splitlines()[0]
+    assert header.startswith("t,s,v,a,x,y,theta")

@@ -18,8 +18,17 @@ from pathlib import Path
 from sphinx.application import Sphinx
 from sphinx.errors import ExtensionError
 
-#: (title, what the paper says there, names of segplan.__all__), in the paper's order.
+#: (title, what the paper says there, names of segplan.__all__): planning first, then the
+#: paper's order, then what is beyond the paper.
 GROUPS: list[tuple[str, str, list[str]]] = [
+    (
+        "Planning: start here",
+        "plan and plan_scenario plan (the default planner beyond the paper, or planner='paper': "
+        "the paper's search, section \"Results\": intermediate nodes on vertex bisectrices, A* "
+        "with f = g + h' for its three h'); a Plan holds the nodes, the unions and LONGD, and "
+        "gives its samples (poses), a timed trajectory, its facts and a file (save, load).",
+        ["plan", "plan_scenario", "Plan", "NoPathError"],
+    ),
     (
         "Mobile robot modelling: poses and the robot",
         'Section "Mobile robot modelling": the robot is the oriented segment A->B of length L; '
@@ -53,11 +62,6 @@ GROUPS: list[tuple[str, str, list[str]]] = [
             "union_free",
             "union_in_bounds",
         ],
-    ),
-    (
-        "Results: graph search and h'",
-        "Intermediate nodes on vertex bisectrices, A* with f = g + h' for the paper's three h'.",
-        ["plan", "plan_scenario", "Plan", "NoPathError"],
     ),
     (
         "Obstacles, enlargement and scenario files",
@@ -106,12 +110,23 @@ HEADER = """\
 
 # API reference
 
-Everything `import segplan` offers (`segplan.__all__`), grouped by the sections of the paper
-that each piece implements, with the docstrings of the code (parameters, returns, the
-formula or section of the paper they compute). `help(segplan.plan)` shows the same text in
-Python. Plots are in `segplan.viz.plot`, animations in `segplan.viz.animate`, and the book's
-studies in `segplan.studies`; they are not part of this reference.
+Everything `import segplan` offers (`segplan.__all__`): planning first, then grouped by the
+sections of the paper that each piece implements, with the docstrings of the code
+(parameters, returns, the formula or section of the paper they compute); at the end the
+plotting and animation helpers (`segplan.viz.plot`, `segplan.viz.animate`). `help(segplan.plan)`
+shows the same text in Python. The book's studies (`segplan.studies`) are not part of this
+reference.
 """
+
+#: The helpers documented after the groups: (title, module, what it is for).
+HELPERS: list[tuple[str, str, str]] = [
+    ("Plots", "segplan.viz.plot", "Draw floors, poses, unions and plans with matplotlib."),
+    (
+        "Animations",
+        "segplan.viz.animate",
+        "The robot driving its plan: an HTML page that plays offline, or a GIF.",
+    ),
+]
 
 
 def check_groups(public: list[str], groups=GROUPS) -> None:
@@ -147,6 +162,9 @@ def page(groups=GROUPS) -> str:
             else:
                 parts.append(f"\n.. autofunction:: {name}\n")
         parts.append("```\n")
+    for title, module, text in HELPERS:
+        rst = f"```{{eval-rst}}\n.. automodule:: {module}\n   :members:\n```\n"
+        parts.append(f"\n## {title}\n\n{text}\n\n{rst}")
     return "".join(parts)
 
 

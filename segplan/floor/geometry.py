@@ -39,10 +39,8 @@ Tolerances (stated)
 Polygons: a turn within ``ANGLE_TOL = 1e-9`` rad of 0 is a collinear vertex (the boundary
 goes straight through it), one within ``ANGLE_TOL`` of pi doubles back; an edge shorter
 than ``LENGTH_TOL = 1e-12`` times the largest coordinate magnitude repeats a vertex; exact
-duplicates anywhere are repeated vertices. These are the tolerances the scenario files
-always used (:mod:`segplan.floor.scenario` before issue 11), the stricter of the two
-validators then in the package: every shipped scenario, notebook and test polygon passes
-them. Since issue 27 two of them are dropped instead of refused (:func:`open_ring`): a
+duplicates anywhere are repeated vertices: every shipped scenario, notebook and test
+polygon passes them. Two kinds of vertex are dropped instead of refused (:func:`open_ring`): a
 closing copy of the first vertex at the end (GeoJSON and WKT rings, CAD exports) and
 collinear vertices (every union of grid cells has them); a polygon that doubles back, a
 repeated vertex elsewhere, zero area, a self-intersection and non-finite numbers are still

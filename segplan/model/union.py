@@ -192,7 +192,7 @@ class Union:
         A fast path for the planner, which builds thousands of unions and has computed
         the intrinsic parameters (``segplan.model.pose.intrinsic(p0, p1)``) and checked
         ``alpha`` and ``L`` itself. Equal to ``Union(p0, p1, alpha, L)`` up to rounding
-        (scalar ``math`` instead of numpy). Added for issue 3 (search speed).
+        (scalar ``math`` instead of numpy), for the search's speed.
         """
         t = math.tan(alpha)
         m0 = math.tan(phi0 + alpha) - t  # mbar0
