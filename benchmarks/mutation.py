@@ -50,7 +50,22 @@ ROOT = Path(__file__).resolve().parent.parent
 #: issue 11 their code also lives in problem (h', the cost-to-go), links (a link's union and
 #: LONGD), validity (is a pose, a union free: the planner's view of collision), sweep (the
 #: swept segment), geometry (the segment-polygon and pose predicates, polygons, bounds) and
-#: frame_exact (the exact optimal frame), so those are mutated too.
+#: frame_exact (the exact optimal frame), so those are mutated too. Issue 24 adds every other
+#: module of ``planning/``: the entry points and the default pipeline (api, default, stages,
+#: context, options, schedule, plan), the paper's bisectrix and Dubins' lower bound, and each
+#: part of the lattice (``LATTICE``: its search, A*, frame, primitives, clearance, edges,
+#: approach, guide, escape and shortcut), each with the lattice's oracles and parts tests.
+LATTICE = [
+    "tests/test_lattice_oracles.py",  # optimal on the graph it generated, Dubins vs OMPL, exact LONGD
+    "tests/test_lattice_parts.py",
+    "tests/test_deferred.py",  # the deferred repair: the cheapest passing edge
+    "tests/test_escape_costtogo.py",
+    "tests/test_lattice_enclosure.py",
+    "tests/test_lattice_deadline.py",
+    "tests/test_lattice.py",
+    "tests/test_lattice_layers.py",
+    "tests/test_lattice_pinned.py",
+]
 TARGETS = {
     # the planner's search and refinement
     "planning/paper/search": ["tests/test_search_oracles.py", "tests/test_search.py"],
@@ -75,6 +90,82 @@ TARGETS = {
         "tests/test_refine.py",
         "tests/test_search_oracles.py::test_collision_counters_pinned",  # the shortcuts' counters
     ],
+    # issue 24: the rest of planning/ -- entry points, options and the default pipeline
+    "planning/api": [
+        "tests/test_search.py",
+        "tests/test_search_oracles.py",
+        "tests/test_context.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_options.py",
+        "tests/test_cli_options.py",
+        "tests/test_approx.py",  # plan_scenario_observed
+        "tests/test_lattice_enclosure.py",
+        "tests/test_lattice_pinned.py",
+    ],
+    "planning/default": [
+        "tests/test_context.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_options.py",
+        "tests/test_lattice_enclosure.py",
+        "tests/test_lattice_pinned.py",
+    ],
+    "planning/stages": [
+        "tests/test_default_pipeline.py",
+        "tests/test_context.py",
+        "tests/test_search_oracles.py",
+        "tests/test_refine.py",
+        "tests/test_lattice_enclosure.py",
+        "tests/test_lattice_pinned.py",
+        "tests/test_cli_options.py",
+    ],
+    "planning/context": [
+        "tests/test_context.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_lattice_deadline.py",
+        "tests/test_lattice_enclosure.py",
+    ],
+    "planning/options": [
+        "tests/test_options.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_context.py",
+        "tests/test_cli_options.py",
+    ],
+    "planning/schedule": [
+        "tests/test_lattice_parts.py",
+        "tests/test_lattice_oracles.py",
+        "tests/test_options.py",
+        "tests/test_lattice_deadline.py",
+        "tests/test_lattice_enclosure.py",
+    ],
+    "planning/plan": [
+        "tests/test_cost_chain.py",
+        "tests/test_lattice_oracles.py",
+        "tests/test_lattice_enclosure.py",
+        "tests/test_escape_costtogo.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_search.py",
+    ],
+    "planning/dubins": [
+        "tests/test_lattice.py",
+        "tests/test_lattice_oracles.py",  # Dubins against a brute-force shortest path
+        "tests/test_escape_costtogo.py",
+    ],
+    "planning/paper/bisectrix": [
+        "tests/test_expansion.py",
+        "tests/test_fast_paths.py",
+        "tests/test_search_oracles.py",
+    ],
+    # the lattice's parts
+    "planning/lattice/search": [*LATTICE, "tests/test_options.py"],
+    "planning/lattice/astar": LATTICE,
+    "planning/lattice/frame": LATTICE,
+    "planning/lattice/primitives": [*LATTICE, "tests/test_primitives_data.py"],
+    "planning/lattice/clearance": ["tests/test_clearance.py", *LATTICE],
+    "planning/lattice/edges": LATTICE,
+    "planning/lattice/approach": LATTICE,
+    "planning/lattice/guide": LATTICE,
+    "planning/lattice/escape": LATTICE,
+    "planning/lattice/shortcut": [*LATTICE, "tests/test_layers.py"],
     "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/geometry": [
