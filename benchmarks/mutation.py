@@ -246,7 +246,7 @@ def run_module(
     t0 = time.perf_counter()
     # the tree is copied now: record its commit and time per module (tests may grow meanwhile)
     copied = {"commit": _commit(), "started": time.strftime("%Y-%m-%d %H:%M:%S %Z")}
-    with tempfile.TemporaryDirectory(prefix=f"mutmut-{module}-") as tmp:
+    with tempfile.TemporaryDirectory(prefix=f"mutmut-{module.replace('/', '-')}-") as tmp:
         tmp = Path(tmp)
         for part in ("segplan", "tests", "scenarios"):
             shutil.copytree(ROOT / part, tmp / part, ignore=shutil.ignore_patterns("__pycache__"))
