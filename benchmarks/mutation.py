@@ -1,7 +1,7 @@
 """Mutation testing of segplan with mutmut (issue 15): chosen modules, a random sample each.
 
 Not part of CI's default run (it takes minutes to about half an hour). For each chosen
-module the repository (package, tests, scenarios) is copied into a temporary directory
+module the repository (package, tests, scenarios, benchmarks) is copied into a temporary directory
 with a ``[tool.mutmut]`` configuration that mutates only that module and runs only its
 targeted tests (``TARGETS``); mutmut then runs, for each mutant, the targeted tests that
 call the mutated function. The working tree is never touched.
@@ -198,7 +198,7 @@ CONFIG = """
 [tool.mutmut]
 source_paths = ["segplan"]
 only_mutate = ["segplan/{module}.py"]
-also_copy = ["scenarios"]
+also_copy = ["scenarios", "benchmarks"]
 pytest_add_cli_args = ["-p", "no:cacheprovider", "-q"]
 pytest_add_cli_args_test_selection = {tests}
 use_git_change_detection = false
@@ -248,7 +248,8 @@ def run_module(
     copied = {"commit": _commit(), "started": time.strftime("%Y-%m-%d %H:%M:%S %Z")}
     with tempfile.TemporaryDirectory(prefix=f"mutmut-{module.replace('/', '-')}-") as tmp:
         tmp = Path(tmp)
-        for part in ("segplan", "tests", "scenarios"):
+        # benchmarks too: some tests load a benchmark script (the robots' floors of test_escape_costtogo)
+        for part in ("segplan", "tests", "scenarios", "benchmarks"):
             shutil.copytree(ROOT / part, tmp / part, ignore=shutil.ignore_patterns("__pycache__"))
         (tmp / "pyproject.toml").write_text(_pyproject(module))
         # 1. generate the mutants and the test-to-function stats (a name that matches nothing)
