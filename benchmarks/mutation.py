@@ -165,7 +165,7 @@ TARGETS = {
     "planning/lattice/approach": LATTICE,
     "planning/lattice/guide": LATTICE,
     "planning/lattice/escape": LATTICE,
-    "planning/lattice/shortcut": [*LATTICE, "tests/test_layers.py"],
+    "planning/lattice/shortcut": LATTICE,
     "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/geometry": [
