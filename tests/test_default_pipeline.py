@@ -82,6 +82,38 @@ def test_without_refinement(stages):
     assert found.refinement is None and [s for s, _ in stages] in (["paper"], ["paper", "lattice"])
 
 
+def test_the_cheaper_of_the_two_searches_plans_is_refined(monkeypatch):
+    """Both searches plan: the cheaper plan is kept, with the link model of the search that
+    found it (the refinement's). On the shipped floors the lattice's is never the dearer, so
+    the stages are swapped: the paper's search returns the lattice's real plan and the
+    lattice the paper's (and the lattice runs after any plan of the paper's search)."""
+    ctx, options = _context("fig6_example2")
+    options = dataclasses.replace(options, near_lower_bound=0.0)
+    paper, paper_links = paper_search(PlanningContext(ctx.scenario, 60.0, options), options.paper)
+    lattice, lattice_links = default.lattice_stage(
+        PlanningContext(ctx.scenario, 60.0, options), options.lattice, options.lattice_after_paper
+    )
+    assert lattice.cost < paper.cost
+    calls, refined = [], []
+
+    def stage(found, links):
+        return lambda *args: calls.append(found) or (found, links)
+
+    monkeypatch.setattr(
+        default, "refine_with", lambda found, links, o, deadline: refined.append((found, links))
+    )
+    for first, second in (
+        ((lattice, lattice_links), (paper, paper_links)),
+        ((paper, paper_links), (lattice, lattice_links)),
+    ):
+        calls.clear()
+        refined.clear()
+        monkeypatch.setattr(default, "paper_search", stage(*first))
+        monkeypatch.setattr(default, "lattice_stage", stage(*second))
+        default.default_pipeline(ctx, options)
+        assert calls == [first[0], second[0]] and refined == [(lattice, lattice_links)]
+
+
 def test_refinement_with_time_left_is_unchanged():
     sc = segplan.load_scenario("fig6_example2")
     for planner in ("paper", "lattice"):
