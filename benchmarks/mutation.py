@@ -144,6 +144,7 @@ TARGETS = {
         "tests/test_escape_costtogo.py",
         "tests/test_default_pipeline.py",
         "tests/test_search.py",
+        "tests/test_options.py",  # a plan's summary (to_dict), the limits' messages
     ],
     "planning/dubins": [
         "tests/test_lattice.py",
