@@ -314,6 +314,28 @@ def test_heading_field_near_and_far_in_an_empty_room():
         assert e <= 1.5 * dubins_length_scalar(x, y, th, gx, gy, gth, R) + 2 * ROBOT.L
 
 
+def test_heading_field_is_mirror_symmetric_in_a_symmetric_room():
+    """Start and goal on the room's middle line, facing along it: the floor is symmetric about
+    that line, so is the cost-to-go (coarse state (i, j, h) and (i, -j, -h)), edge rows
+    included (an oracle of the graph's construction: every primitive kept or dropped alike on
+    both sides)."""
+    sc = _scenario((2.0, 6.0, 0.0), (14.0, 6.0, 0.0))  # BOUNDS: y from 0 to 12
+    field, _ = _field(sc)
+    j = np.arange(field.ny) + field.J0
+    assert np.array_equal(j, -j[::-1])  # the coarse rows are symmetric about the start's
+    mirror = [
+        int(np.argmin(np.abs(np.remainder(ANGLES + a + math.pi, 2 * math.pi) - math.pi))) for a in ANGLES
+    ]
+    assert all(
+        abs(math.remainder(ANGLES[k] + a, 2 * math.pi)) < 1e-12 for k, a in zip(mirror, ANGLES, strict=True)
+    )
+    t = field.table
+    m = t[:, ::-1, :][:, :, mirror]
+    assert np.array_equal(np.isinf(t), np.isinf(m)) and np.isfinite(t).sum() > 1000
+    finite = np.isfinite(t)
+    assert np.allclose(t[finite], m[finite], rtol=1e-12, atol=1e-12)
+
+
 def test_heading_field_knows_the_heading():
     sc = _scenario((2.0, 6.0, 0.0), (14.0, 6.0, 0.0))
     field, (gx, gy, _) = _field(sc)

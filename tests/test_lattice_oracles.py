@@ -264,8 +264,9 @@ def test_the_guided_search_expands_each_state_once_and_only_lowers_g():
     # the coarse guide re-ranks the open list (and lowers the weight): bookkeeping still holds
     plan, s = run("any-005", 2.0, guide=True, approaches=True)
     assert s.guide.field is not None, "the guide was not built: the test tests nothing"
+    assert s.weight == SCHEDULE.guided_weight  # built at guide_after: the weight lowered
     expanded = expanded_states(s)
-    assert plan.expanded == len(expanded) == len(set(expanded))
+    assert plan.expanded == len(expanded) == len(set(expanded)) > SCHEDULE.guide_after
     assert not dearer_reparents(s)
 
 
