@@ -167,6 +167,8 @@ def test_repair_within_a_budget_and_without_a_passing_edge():
     assert edges.repair([(5.0, "a", ("a", 0))], budget=4.5) is None
     assert ("a", 0) in edges.failed  # over the budget: not used again
     assert edges.repair([]) is None
+    edges.reset()
+    assert edges.repair([(4.5, "a", ("a", 0))], budget=4.5) == (4.5, "a", ("a", 0))  # within: at it too
 
 
 # -- the schedule ----------------------------------------------------------------------------
