@@ -230,6 +230,23 @@ def test_escape_searches_run_at_the_first_resolution_only(monkeypatch):
     assert calls[0] is True and len(calls) > 2 and not any(calls[1:])
 
 
+def test_escape_searches_keep_the_callers_schedule(monkeypatch):
+    """The searches between the arcs' ends run with the caller's schedule: at most its
+    ``max_escapes`` of them, each with that schedule."""
+    calls = []
+    inner = lattice_module._lattice_search
+
+    def spy(sub, **kw):
+        calls.append(kw["schedule"])
+        return inner(sub, **kw)
+
+    monkeypatch.setattr(lattice_module, "_lattice_search", spy)
+    schedule = dataclasses.replace(SCHEDULE, max_escapes=2, guide_after=32)
+    with pytest.raises(NoPathError):
+        lattice_search(_facing_wall(0.35), schedule=schedule)  # no forward plan: escapes run out
+    assert len(calls) == 1 + 2 and all(s is schedule for s in calls)
+
+
 def test_random_floor_any_114_needs_the_arcs():
     sc = floors.random_floor("any", 114)
     with pytest.raises(NoPathError) as e:
