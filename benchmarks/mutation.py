@@ -89,6 +89,8 @@ TARGETS = {
         "tests/test_refine_oracles.py",
         "tests/test_refine.py",
         "tests/test_search_oracles.py::test_collision_counters_pinned",  # the shortcuts' counters
+        # the broad phase of many obstacles (arrays) against the scalar loop
+        "tests/test_lattice_enclosure.py::test_vectorised_broad_phase_decides_as_the_scalar_loop",
     ],
     # issue 24: the rest of planning/ -- entry points, options and the default pipeline
     "planning/api": [
