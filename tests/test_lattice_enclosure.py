@@ -36,6 +36,29 @@ def test_enclosed_goal_stops_early():
     assert e.best is not None and e.best.nodes[0] == sc.start
 
 
+@pytest.mark.parametrize("name", ["wall_ahead_same", "corridor"])
+def test_the_enclosure_is_judged_once_the_tree_is_due(monkeypatch, name):
+    """The goal's enclosure is judged when the approach tree is built (``approach_after``
+    expansions) and, if the tree is not exhausted then, once more at ``enclosure_after``:
+    a search that plans before that counts the states that reach the goal (``reach_all``)
+    never, and asks whether the start joins them at most once."""
+    from segplan.planning.lattice.approach import GoalApproach
+    from segplan.studies.floors import hard_cases
+
+    calls = []
+    for method in ("reach_all", "start_joins"):
+        original = getattr(GoalApproach, method)
+
+        def spy(self, *a, _original=original, _name=method, **kw):
+            calls.append(_name)
+            return _original(self, *a, **kw)
+
+        monkeypatch.setattr(GoalApproach, method, spy)
+    plan, outcome, _ = plan_of(astar_of(hard_cases()[name]))
+    assert outcome == "found" and SCHEDULE.approach_after < plan.expanded < SCHEDULE.enclosure_after
+    assert "reach_all" not in calls and calls.count("start_joins") <= 1
+
+
 def test_forward_search_alone_finds_no_plan_either():
     """Without the approach tree (so without the enclosure test), the forward search finds no
     plan there either."""
