@@ -311,7 +311,9 @@ def test_stored_fit_is_the_fit_and_an_immutable_constant():
     assert not fit.coef.flags.writeable
     with pytest.raises(ValueError):
         fit.coef[0] = 0.0
-    assert not any(isinstance(v, dict) for k, v in vars(frame_module).items() if not k.startswith("__"))
+    # no module state (mutmut's tables of a mutated copy aside: benchmarks/mutation.py)
+    state = [k for k, v in vars(frame_module).items() if isinstance(v, dict) and not k.startswith("__")]
+    assert not [k for k in state if not k.startswith("mutants_x")]
     again = fit_heuristic()  # refitted here; the package reads the stored coefficients
     # compared by the frames they give (segplan.fit.store.FRAME_ATOL says why not by coefficient)
     grid = frame_check_grid()
