@@ -175,6 +175,7 @@ TARGETS = {
         "tests/test_geometry.py",
         "tests/test_collision.py",
         "tests/test_collision_fallbacks.py",
+        "tests/test_world.py::test_enlargement_excess_is_attained_on_a_square",
     ],
     # the cost and the frame
     "model/cost": [
@@ -183,6 +184,7 @@ TARGETS = {
         "tests/test_derivation.py",
         "tests/test_romberg.py",
         "tests/test_fast_paths.py",
+        "tests/test_cost_chain.py",  # a chain's exact LONGD (chain_longd)
     ],
     "model/frame": ["tests/test_frame.py"],
     "model/frame_exact": ["tests/test_frame.py"],
