@@ -384,3 +384,11 @@ def test_non_finite_scalar_is_named(which):
 def test_exported_from_the_package():
     assert segplan.optimal_alpha is optimal_alpha
     assert "optimal_alpha" in segplan.__all__
+
+
+@pytest.mark.parametrize("method", ["heuristic", "exact", "parabola"])
+def test_coincident_points_have_no_reference_system(method):
+    """``d <= 0`` is refused by every method, naming the chord length (also inside an array)."""
+    for d in (0.0, -1.0, np.array([2.0, 0.0])):
+        with pytest.raises(ValueError, match="chord length"):
+            optimal_alpha_intrinsic(d, 0.2, -0.1, 1.0, method=method)
