@@ -392,3 +392,20 @@ def test_coincident_points_have_no_reference_system(method):
     for d in (0.0, -1.0, np.array([2.0, 0.0])):
         with pytest.raises(ValueError, match="chord length"):
             optimal_alpha_intrinsic(d, 0.2, -0.1, 1.0, method=method)
+
+
+def test_the_scalar_path_of_another_fit_is_that_fits():
+    """A fit other than the stored one (here a copy, the same numbers in another object) goes
+    through the scalar path's own terms: the same frames as the stored fit's, and as the
+    array path's."""
+    fit = heuristic_coefficients()
+    other = fit._replace(coef=fit.coef.copy())
+    assert other is not fit
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        d, p0, p1 = rng.uniform(0.5, 20.0), *rng.uniform(-1.4, 1.4, 2)
+        one = heuristic_alpha(d, p0, p1, 1.0, fit=other)
+        assert one == pytest.approx(heuristic_alpha(d, p0, p1, 1.0, fit=fit), abs=1e-14)
+        assert one == pytest.approx(
+            float(heuristic_alpha(np.array([d]), p0, p1, 1.0, fit=other)[0]), abs=1e-12
+        )
