@@ -145,11 +145,23 @@ def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
                 out.append((ws.colliding(u, first=False), sorted(ws.facts(u).near.items())))
         return out, ws.stats.broad_rejections
 
+    def some_first():  # a few obstacles asked about first: the broad phase then skips them
+        ws = validity.Workspace(sc.enlarged, sc.robot.L, fb, sc.robot.max_curvature)
+        links = LinkModel(ws)
+        out = []
+        for a, b in zip(poses[:-1], poses[1:], strict=True):
+            u = links.union(a, Pose(a.x + (b.x - a.x) * 0.2, a.y + (b.y - a.y) * 0.2, b.theta))
+            if u is not None:
+                out.append((ws.colliding(u, only=list(range(0, 128, 9))), ws.colliding(u, first=False)))
+        return out
+
     vector = run()
+    vector_some = some_first()
     monkeypatch.setattr(validity, "VECTOR_SCREEN_MIN", 10**9)
     scalar = run()
-    assert vector == scalar
+    assert vector == scalar and vector_some == some_first()
     assert vector[1] > 0 and any(isinstance(x, tuple) and x[0] for x in vector[0])
+    assert [second for _, second in vector_some] == [x[0] for x in vector[0] if isinstance(x, tuple)]
 
 
 def _tree_of(sc, max_expansions):
