@@ -33,6 +33,7 @@ from hypothesis import strategies as st
 
 import segplan
 from segplan.floor import geometry as geo
+from segplan.floor.random_floors import random_convex_polygon
 
 L = 1.0
 START, GOAL = (-3000.0, 2500.0, 0.0), (-2990.0, 2500.0, 0.0)  # far from every polygon: a free direct union
@@ -362,6 +363,23 @@ def test_a_polygon_made_without_checks_has_float_vertices():
     float vertices, from integer ones too."""
     p = geo.ConvexPolygon([[0, 0], [2, 0], [0, 2]], check=False)
     assert p.vertices.dtype == np.float64 and p.vertices.tolist() == [[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]]
+
+
+@pytest.mark.parametrize("check", [True, False])
+def test_a_polygons_circle_is_its_bounding_boxs_centre_and_farthest_vertex(check):
+    """``centre``: the bounding box's centre; ``radius``: the farthest vertex from it (the
+    paper's ``r_max``), against shapely's box and distances."""
+    rng = np.random.default_rng(4)
+    for _ in range(20):
+        pts = random_convex_polygon(rng, tuple(rng.uniform(-50.0, 50.0, 2)), float(rng.uniform(0.1, 10.0)), 8)
+        p = geo.ConvexPolygon(pts, check=check)
+        shape = shapely.Polygon(pts)
+        x0, y0, x1, y1 = shape.bounds
+        assert p.centre == pytest.approx((0.5 * (x0 + x1), 0.5 * (y0 + y1)), abs=1e-12)
+        centre = shapely.Point(p.centre)
+        far = max(centre.distance(shapely.Point(q)) for q in pts)
+        assert p.radius == pytest.approx(far, rel=1e-12)
+        assert p.box == pytest.approx(shape.bounds, abs=0.0)
 
 
 def test_the_touching_tolerance_is_relative_to_the_scene():
