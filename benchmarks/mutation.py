@@ -19,7 +19,8 @@ Run, niced (the machine is shared)::
         --modules planning/paper/search planning/refine --sample 20
     PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --sample 40 --json mutation.json
 
-Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers.
+Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers; about 25 minutes for the 25
+modules of ``planning/`` x 10 (issue 24).
 
 The stored run is ``benchmarks/results/mutation.json`` (its ``meta`` says when, on which
 commit, with which command and seed); the survivors judged equivalent are listed, each with
