@@ -1,7 +1,7 @@
 """Mutation testing of segplan with mutmut (issue 15): chosen modules, a random sample each.
 
 Not part of CI's default run (it takes minutes to about half an hour). For each chosen
-module the repository (package, tests, scenarios) is copied into a temporary directory
+module the repository (package, tests, scenarios, benchmarks) is copied into a temporary directory
 with a ``[tool.mutmut]`` configuration that mutates only that module and runs only its
 targeted tests (``TARGETS``); mutmut then runs, for each mutant, the targeted tests that
 call the mutated function. The working tree is never touched.
@@ -19,7 +19,8 @@ Run, niced (the machine is shared)::
         --modules planning/paper/search planning/refine --sample 20
     PYTHONPATH=$PWD nice -n 10 python benchmarks/mutation.py --sample 40 --json mutation.json
 
-Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers.
+Budget: about 30 minutes for 6 modules x 40 mutants with 2 workers; about 25 minutes for the 25
+modules of ``planning/`` x 10 (issue 24).
 
 The stored run is ``benchmarks/results/mutation.json`` (its ``meta`` says when, on which
 commit, with which command and seed); the survivors judged equivalent are listed, each with
@@ -50,7 +51,22 @@ ROOT = Path(__file__).resolve().parent.parent
 #: issue 11 their code also lives in problem (h', the cost-to-go), links (a link's union and
 #: LONGD), validity (is a pose, a union free: the planner's view of collision), sweep (the
 #: swept segment), geometry (the segment-polygon and pose predicates, polygons, bounds) and
-#: frame_exact (the exact optimal frame), so those are mutated too.
+#: frame_exact (the exact optimal frame), so those are mutated too. Issue 24 adds every other
+#: module of ``planning/``: the entry points and the default pipeline (api, default, stages,
+#: context, options, schedule, plan), the paper's bisectrix and Dubins' lower bound, and each
+#: part of the lattice (``LATTICE``: its search, A*, frame, primitives, clearance, edges,
+#: approach, guide, escape and shortcut), each with the lattice's oracles and parts tests.
+LATTICE = [
+    "tests/test_lattice_oracles.py",  # optimal on the graph it generated, Dubins vs OMPL, exact LONGD
+    "tests/test_lattice_parts.py",
+    "tests/test_deferred.py",  # the deferred repair: the cheapest passing edge
+    "tests/test_escape_costtogo.py",
+    "tests/test_lattice_enclosure.py",
+    "tests/test_lattice_deadline.py",
+    "tests/test_lattice.py",
+    "tests/test_lattice_layers.py",
+    "tests/test_lattice_pinned.py",
+]
 TARGETS = {
     # the planner's search and refinement
     "planning/paper/search": ["tests/test_search_oracles.py", "tests/test_search.py"],
@@ -74,13 +90,93 @@ TARGETS = {
         "tests/test_refine_oracles.py",
         "tests/test_refine.py",
         "tests/test_search_oracles.py::test_collision_counters_pinned",  # the shortcuts' counters
+        # the broad phase of many obstacles (arrays) against the scalar loop
+        "tests/test_lattice_enclosure.py::test_vectorised_broad_phase_decides_as_the_scalar_loop",
     ],
+    # issue 24: the rest of planning/ -- entry points, options and the default pipeline
+    "planning/api": [
+        "tests/test_search.py",
+        "tests/test_search_oracles.py",
+        "tests/test_context.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_options.py",
+        "tests/test_cli_options.py",
+        "tests/test_approx.py",  # plan_scenario_observed
+        "tests/test_lattice_enclosure.py",
+        "tests/test_lattice_pinned.py",
+    ],
+    "planning/default": [
+        "tests/test_context.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_options.py",
+        "tests/test_lattice_enclosure.py",
+        "tests/test_lattice_pinned.py",
+    ],
+    "planning/stages": [
+        "tests/test_default_pipeline.py",
+        "tests/test_context.py",
+        "tests/test_search_oracles.py",
+        "tests/test_refine.py",
+        "tests/test_lattice_enclosure.py",
+        "tests/test_lattice_pinned.py",
+        "tests/test_cli_options.py",
+    ],
+    "planning/context": [
+        "tests/test_context.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_lattice_deadline.py",
+        "tests/test_lattice_enclosure.py",
+    ],
+    "planning/options": [
+        "tests/test_options.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_context.py",
+        "tests/test_cli_options.py",
+    ],
+    "planning/schedule": [
+        "tests/test_lattice_parts.py",
+        "tests/test_lattice_oracles.py",
+        "tests/test_options.py",
+        "tests/test_lattice_deadline.py",
+        "tests/test_lattice_enclosure.py",
+    ],
+    "planning/plan": [
+        "tests/test_cost_chain.py",
+        "tests/test_lattice_oracles.py",
+        "tests/test_lattice_enclosure.py",
+        "tests/test_escape_costtogo.py",
+        "tests/test_default_pipeline.py",
+        "tests/test_search.py",
+        "tests/test_options.py",  # a plan's summary (to_dict), the limits' messages
+    ],
+    "planning/dubins": [
+        "tests/test_lattice.py",
+        "tests/test_lattice_oracles.py",  # Dubins against a brute-force shortest path
+        "tests/test_escape_costtogo.py",
+    ],
+    "planning/paper/bisectrix": [
+        "tests/test_expansion.py",
+        "tests/test_fast_paths.py",
+        "tests/test_search_oracles.py",
+    ],
+    # the lattice's parts
+    "planning/lattice/search": [*LATTICE, "tests/test_options.py"],
+    "planning/lattice/astar": LATTICE,
+    "planning/lattice/frame": LATTICE,
+    "planning/lattice/primitives": [*LATTICE, "tests/test_primitives_data.py"],
+    "planning/lattice/clearance": ["tests/test_clearance.py", *LATTICE],
+    "planning/lattice/edges": LATTICE,
+    "planning/lattice/approach": LATTICE,
+    "planning/lattice/guide": LATTICE,
+    "planning/lattice/escape": LATTICE,
+    "planning/lattice/shortcut": LATTICE,
     "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/geometry": [
         "tests/test_geometry.py",
         "tests/test_collision.py",
         "tests/test_collision_fallbacks.py",
+        "tests/test_world.py::test_enlargement_excess_is_attained_on_a_square",
     ],
     # the cost and the frame
     "model/cost": [
@@ -89,6 +185,7 @@ TARGETS = {
         "tests/test_derivation.py",
         "tests/test_romberg.py",
         "tests/test_fast_paths.py",
+        "tests/test_cost_chain.py",  # a chain's exact LONGD (chain_longd)
     ],
     "model/frame": ["tests/test_frame.py"],
     "model/frame_exact": ["tests/test_frame.py"],
@@ -107,7 +204,7 @@ CONFIG = """
 [tool.mutmut]
 source_paths = ["segplan"]
 only_mutate = ["segplan/{module}.py"]
-also_copy = ["scenarios"]
+also_copy = ["scenarios", "benchmarks"]
 pytest_add_cli_args = ["-p", "no:cacheprovider", "-q"]
 pytest_add_cli_args_test_selection = {tests}
 use_git_change_detection = false
@@ -155,9 +252,10 @@ def run_module(
     t0 = time.perf_counter()
     # the tree is copied now: record its commit and time per module (tests may grow meanwhile)
     copied = {"commit": _commit(), "started": time.strftime("%Y-%m-%d %H:%M:%S %Z")}
-    with tempfile.TemporaryDirectory(prefix=f"mutmut-{module}-") as tmp:
+    with tempfile.TemporaryDirectory(prefix=f"mutmut-{module.replace('/', '-')}-") as tmp:
         tmp = Path(tmp)
-        for part in ("segplan", "tests", "scenarios"):
+        # benchmarks too: some tests load a benchmark script (the robots' floors of test_escape_costtogo)
+        for part in ("segplan", "tests", "scenarios", "benchmarks"):
             shutil.copytree(ROOT / part, tmp / part, ignore=shutil.ignore_patterns("__pycache__"))
         (tmp / "pyproject.toml").write_text(_pyproject(module))
         # 1. generate the mutants and the test-to-function stats (a name that matches nothing)

@@ -30,3 +30,15 @@ def recomputed():
     from segplan.fit.store import compute_primitives
 
     return compute_primitives()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def cold_primitive_sets():
+    """Each session starts without primitive sets in memory (``primitive_set``'s cache, with
+    each set's fine points and heading tables). A fresh process has none anyway; a session run
+    in a process that already planned does: benchmarks/mutation.py's mutmut forks every
+    mutant's session from the process that ran the clean tests, whose sets, made by the
+    unmutated code, would hide a mutant of the code that makes them."""
+    from segplan.planning.lattice.primitives import primitive_set
+
+    primitive_set.cache_clear()

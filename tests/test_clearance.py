@@ -8,6 +8,7 @@ and for a blocked cell, that the whole square lies inside an obstacle or beyond 
 import math
 
 import numpy as np
+import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -74,3 +75,45 @@ def test_the_grid_bounds_hold(polys, frame, walls, seed):
     near = free & (d < 0.5)
     assert near.any()
     assert np.all(lower[near] >= d[near] - 6.0 * h)
+
+
+@pytest.mark.parametrize("walls", [False, True])
+def test_the_lattice_reads_the_grid_by_flat_offsets(walls):
+    """``lower_blocked_flat`` is ``lower`` with ``-inf`` exactly in the blocked cells (one
+    gather answers both of the lattice's questions), and a lattice point's cell (``base``)
+    plus the ``offsets`` of points relative to it are the points' cells (``cells``)."""
+    rng = np.random.default_rng(3)
+    polys = [_polygon(int(s), *rng.uniform((0.5, 0.5), (5.5, 3.5)), 0.8) for s in rng.integers(0, 2**16, 4)]
+    grid = ClearanceGrid(polys, (3.0, 2.0, 0.4), ROOM if walls else None, CELL, 4, (3.0, 2.0, 0.0), 1.0)
+    lb, blocked = grid.lower_blocked_flat, grid.blocked_flat
+    assert blocked.any() and (~blocked).any()
+    assert np.array_equal(np.isneginf(lb), blocked) and np.all(np.isfinite(lb[~blocked]))
+    assert np.array_equal(lb[~blocked], grid.lower_flat[~blocked])
+    a, b = grid.i0 + grid.nx // 2, grid.j0 + grid.ny // 2
+    rel = rng.uniform(-grid.pad * CELL, grid.pad * CELL, (200, 2))
+    i, j, inside = grid.cells(rel + (a * CELL, b * CELL))
+    assert inside.all()
+    assert np.array_equal(grid.base(a, b) + grid.offsets(rel), i * grid.ny + j)
+
+
+def test_obstacles_near_a_box_are_those_whose_bounding_box_meets_it():
+    """``obstacles_near`` against shapely's intersection of boxes, with a few obstacles (the
+    scalar path) and with many (the array path, above 32)."""
+    from segplan.planning.lattice.clearance import obstacles_near
+    from segplan.planning.validity import Workspace
+
+    rng = np.random.default_rng(7)
+    for n in (5, 60):
+        polys = [_polygon(int(s), *rng.uniform(0.0, 20.0, 2), 0.5) for s in rng.integers(0, 2**16, n)]
+        ws = Workspace([p.vertices for p in polys], 1.0, None, 1.0)
+        boxes = [shapely.box(*shapely.Polygon(p.vertices).bounds) for p in polys]
+        hits = 0
+        for _ in range(100):
+            pts = rng.uniform(0.0, 20.0, (int(rng.integers(1, 6)), 2))
+            margin = float(rng.uniform(0.0, 1.0))
+            x0, y0 = pts.min(axis=0) - margin
+            x1, y1 = pts.max(axis=0) + margin
+            truth = [k for k, b in enumerate(boxes) if b.intersects(shapely.box(x0, y0, x1, y1))]
+            assert obstacles_near(ws, pts, margin) == truth
+            hits += len(truth)
+        assert hits > 50

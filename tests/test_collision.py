@@ -399,6 +399,23 @@ def test_union_in_bounds_matches_dense_sampling():
     assert misses == 0
 
 
+def test_union_leaving_the_bounds_by_one_side_is_out():
+    """Bounds loose on three sides (up to 2 L) and cutting the sampled extent on the fourth:
+    never in bounds (the quick test of the frame box must not pass such a union)."""
+    rng = np.random.default_rng(12)
+    for _ in range(1500):
+        u = random_union(rng)
+        A, B = segments_at(u, u.xs(N_DENSE))
+        pts = np.concatenate((A, B))
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        loose = u.L * rng.uniform(0.0, 2.0, 4)
+        cut = int(rng.integers(4))
+        loose[cut] = -1e-3 * u.L
+        bounds = (lo[0] - loose[0], lo[1] - loose[1], hi[0] + loose[2], hi[1] + loose[3])
+        if bounds[0] < bounds[2] and bounds[1] < bounds[3]:
+            assert not col.union_in_bounds(u, bounds)
+
+
 def test_pose_in_bounds():
     assert geo.pose_in_bounds((1, 1, 0), 1.0, (0, 0, 3, 3))
     assert not geo.pose_in_bounds((1, 1, 0), 2.0, (0, 0, 3, 3))  # B on the wall

@@ -60,3 +60,36 @@ def test_counters_record_the_stages():
     default_pipeline(ctx, options)
     assert ctx.counters["paper_runs"] == 1 and ctx.counters["paper_expanded"] > 0
     assert ctx.counters["lattice_runs"] <= 1
+    # the paper's search alone, in a context of its own: a plan is counted as one
+    from segplan.planning.stages import paper_search
+
+    alone = Ctx(scenario, options.time_limit, options)
+    try:
+        found = paper_search(alone, options.paper)[0]
+    except segplan.NoPathError as exc:
+        found, expanded = None, exc.expanded
+    else:
+        expanded = found.expanded
+    assert found is not None  # fig6_example2: the paper's search plans it
+    assert dict(alone.counters) == {"paper_runs": 1, "paper_plans": 1, "paper_expanded": expanded}
+    assert ctx.counters["paper_plans"] == 1 and ctx.counters["paper_expanded"] == expanded
+    # a failed run counts its expansions, no plan
+    failed = Ctx(scenario, options.time_limit, options)
+    with pytest.raises(segplan.NoPathError):
+        paper_search(failed, segplan.PaperOptions(max_expansions=1))
+    assert dict(failed.counters) == {"paper_runs": 1, "paper_plans": 0, "paper_expanded": 1}
+
+
+def test_the_contexts_link_model_keeps_its_options():
+    """``link_model``: the context's workspace, the steering fallback as asked (on by
+    default), and the observer called with each link cost."""
+    from segplan.model.pose import Pose
+
+    ctx = PlanningContext(segplan.load_scenario("fig5_example1"), 3.0)
+    assert ctx.link_model().steer_fallback is True
+    assert ctx.link_model(steer_fallback=False).steer_fallback is False
+    seen = []
+    links = ctx.link_model("exact", observer=lambda u, c: seen.append((u, c)))
+    u = links.union(Pose(0.0, 0.0, 0.0), Pose(5.0, 1.0, 0.3))
+    cost = links.link_cost(u)
+    assert links.alpha_method == "exact" and links.ws is ctx.workspace and seen == [(u, cost)]

@@ -83,6 +83,42 @@ def test_without_refinement(stages):
     assert found.refinement is None and [s for s, _ in stages] in (["paper"], ["paper", "lattice"])
 
 
+def test_both_searches_plans_are_refined_the_cheaper_first(monkeypatch):
+    """Both searches plan: each plan is refined with the link model of the search that found
+    it, the cheaper first (issue 25), and the shorter refined plan is kept. On the shipped
+    floors the lattice's is never the dearer, so the stages are swapped too: the paper's
+    search returns the lattice's real plan and the lattice the paper's (and the lattice runs
+    after any plan of the paper's search)."""
+    ctx, options = _context("fig6_example2")
+    options = dataclasses.replace(options, near_lower_bound=0.0)
+    paper, paper_links = paper_search(PlanningContext(ctx.scenario, 60.0, options), options.paper)
+    lattice, lattice_links = default.lattice_stage(
+        PlanningContext(ctx.scenario, 60.0, options), options.lattice, options.lattice_after_paper
+    )
+    assert lattice.cost < paper.cost
+    calls, refined = [], []
+
+    def stage(found, links):
+        return lambda *args: calls.append(found) or (found, links)
+
+    def refine_spy(found, links, o, deadline):
+        refined.append((found, links))
+        return found  # refined as it is: the cheaper plan stays the cheaper
+
+    monkeypatch.setattr(default, "refine_with", refine_spy)
+    for first, second in (
+        ((lattice, lattice_links), (paper, paper_links)),
+        ((paper, paper_links), (lattice, lattice_links)),
+    ):
+        calls.clear()
+        refined.clear()
+        monkeypatch.setattr(default, "paper_search", stage(*first))
+        monkeypatch.setattr(default, "lattice_stage", stage(*second))
+        kept = default.default_pipeline(ctx, options)
+        assert calls == [first[0], second[0]]
+        assert refined == [(lattice, lattice_links), (paper, paper_links)] and kept is lattice
+
+
 def test_refinement_with_time_left_is_unchanged():
     sc = segplan.load_scenario("fig6_example2")
     for planner in ("paper", "lattice"):

@@ -143,6 +143,35 @@ def test_approach_chains_avoid_edges_that_fail_their_deferred_check(name):
             key = nk
 
 
+def test_the_exhausted_approach_tree_is_the_least_cost_tree_of_the_edges_that_pass():
+    """Grown until exhausted with half of its deferred checks failing, the approach tree holds
+    every state that an edge that certainly passes (its check not declared failed, the
+    certified test passing its union, tested here apart) joins to a state of the tree, at no
+    more than that edge's cost plus that state's (Bellman's inequality): a state whose edge
+    failed is repaired to its cheapest passing edge, not forgotten."""
+    t = _approach_tree(hard_cases()["enclosed_slit"], _HalfBlockedTree, limit=100_000)
+    assert t.exhausted and t.declared and len(t.keys) > 20
+    settled = set(t.keys) | {(0, 0, 0)}
+    frontier = {}  # states outside the tree: (i, j, h0) -> [(m, p)] of edges into it
+    for i, j, h1 in settled:
+        for h0, prims in enumerate(t.prims):
+            for m, p in enumerate(prims):
+                if p.h1 == h1:
+                    frontier.setdefault((i - p.di, j - p.dj, h0), []).append((m, p))
+    tighter, missing = [], []
+    for key, into in frontier.items():
+        for m, p in into:
+            if _half_fail((key, m)):
+                continue
+            succ = (key[0] + p.di, key[1] + p.dj, p.h1)
+            bound = t.to_goal[succ] + p.cost
+            if key in settled and not bound < t.to_goal[key] * (1 - 1e-12):
+                continue
+            if bound <= t.budget and t.ws.union_free(t.frame.union(key, p)):
+                (tighter if key in settled else missing).append((key, m))
+    assert not tighter and not missing
+
+
 def test_approach_edges_are_checked_only_for_settled_states():
     sc = random_floor("any", 23)
     t = _approach_tree(sc, _SoundTree)

@@ -236,6 +236,23 @@ def test_escape_searches_run_at_the_first_resolution_only(monkeypatch):
     assert calls[0] is True and len(calls) > 2 and not any(calls[1:])
 
 
+def test_escape_searches_keep_the_callers_schedule(monkeypatch):
+    """The searches between the arcs' ends run with the caller's schedule: at most its
+    ``max_escapes`` of them, each with that schedule."""
+    calls = []
+    inner = lattice_module._lattice_search
+
+    def spy(sub, **kw):
+        calls.append(kw["schedule"])
+        return inner(sub, **kw)
+
+    monkeypatch.setattr(lattice_module, "_lattice_search", spy)
+    schedule = dataclasses.replace(SCHEDULE, max_escapes=2, guide_after=32)
+    with pytest.raises(NoPathError):
+        lattice_search(_facing_wall(0.35), schedule=schedule)  # no forward plan: escapes run out
+    assert len(calls) == 1 + 2 and all(s is schedule for s in calls)
+
+
 def test_random_floor_any_114_needs_the_arcs():
     sc = floors.random_floor("any", 114)
     with pytest.raises(NoPathError) as e:
@@ -318,6 +335,28 @@ def test_heading_field_near_and_far_in_an_empty_room():
         assert e >= math.hypot(gx - x, gy - y) - 2 * field.rc
         # not absurdly above a Dubins car's length (plus the union's detour of the front wheel)
         assert e <= 1.5 * dubins_length_scalar(x, y, th, gx, gy, gth, R) + 2 * ROBOT.L
+
+
+def test_heading_field_is_mirror_symmetric_in_a_symmetric_room():
+    """Start and goal on the room's middle line, facing along it: the floor is symmetric about
+    that line, so is the cost-to-go (coarse state (i, j, h) and (i, -j, -h)), edge rows
+    included (an oracle of the graph's construction: every primitive kept or dropped alike on
+    both sides)."""
+    sc = _scenario((2.0, 6.0, 0.0), (14.0, 6.0, 0.0))  # BOUNDS: y from 0 to 12
+    field, _ = _field(sc)
+    j = np.arange(field.ny) + field.J0
+    assert np.array_equal(j, -j[::-1])  # the coarse rows are symmetric about the start's
+    mirror = [
+        int(np.argmin(np.abs(np.remainder(ANGLES + a + math.pi, 2 * math.pi) - math.pi))) for a in ANGLES
+    ]
+    assert all(
+        abs(math.remainder(ANGLES[k] + a, 2 * math.pi)) < 1e-12 for k, a in zip(mirror, ANGLES, strict=True)
+    )
+    t = field.table
+    m = t[:, ::-1, :][:, :, mirror]
+    assert np.array_equal(np.isinf(t), np.isinf(m)) and np.isfinite(t).sum() > 1000
+    finite = np.isfinite(t)
+    assert np.allclose(t[finite], m[finite], rtol=1e-12, atol=1e-12)
 
 
 def test_heading_field_knows_the_heading():

@@ -199,6 +199,32 @@ def test_version_b_is_no_worse_than_a(start, goal):
     assert found >= 1 and compared >= 1  # at least one node compared in both versions
 
 
+@pytest.mark.parametrize(
+    "start, goal", [((0.0, -0.5, 0.0), (12.0, 1.0, 0.8)), ((0.0, 0.0, 0.5), (12.0, 1.0, 0.0))]
+)
+def test_version_a_shares_the_optimal_frame_of_the_direct_union(start, goal):
+    """Version "a": the shared frame is the direct union's optimal frame (exact method: the
+    frame of least LONGD [1], found here by a bounded scalar minimisation over the feasible
+    interval), not the chord's, which costs more here."""
+    from scipy.optimize import minimize_scalar
+
+    from segplan.model.pose import intrinsic_interval
+
+    start, goal = Pose(*start), Pose(*goal)
+    beta = expander([BOX], version="a", alpha_method="exact").shared_frame(start, goal)
+    _, psi, _, _, lo, hi = intrinsic_interval(start, goal)
+    grid = np.linspace(lo, hi, 41)[1:-1]
+    a0 = grid[np.argmin([longd_exact(start, goal, a, L) for a in grid])]
+    step = (hi - lo) / 40
+    best = minimize_scalar(
+        lambda a: longd_exact(start, goal, a, L), bounds=(a0 - step, a0 + step), method="bounded",
+        options={"xatol": 1e-10},
+    )  # fmt: skip
+    shared = longd_exact(start, goal, psi - beta, L)  # the direct union in the shared frame
+    assert shared <= best.fun * (1 + 1e-9)
+    assert longd_exact(start, goal, 0.0, L) > shared * 1.005  # the chord's frame is dearer
+
+
 def test_iteration_counts_over_random_worlds():
     """Distribution of iterates of successful candidates: mostly one to three."""
     from segplan import random_world

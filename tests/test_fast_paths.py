@@ -25,7 +25,7 @@ from segplan.model import cost
 from segplan.model.cost import longd_intrinsic_scalar
 from segplan.model.frame import _exponents, _features, heuristic_alpha, heuristic_coefficients
 from segplan.model.pose import Pose, alpha_interval, intrinsic, intrinsic_interval
-from segplan.planning.links import LONGD_RTOL, LinkModel
+from segplan.planning.links import LONGD_RTOL, PREFETCH_MIN_HEURISTIC, LinkModel
 from segplan.planning.validity import Workspace
 
 
@@ -227,6 +227,46 @@ def test_small_heuristic_batches_use_the_scalar_path():
         assert u.alpha == pytest.approx(heuristic_alpha(geo.d, geo.phi0, geo.phi1, ws.L), abs=1e-12)
 
 
+def test_large_heuristic_batches_give_the_scalar_paths_alphas():
+    """From ``PREFETCH_MIN_HEURISTIC`` pairs on, the heuristic frame's array path batches them;
+    each union then has the alpha of the scalar path (to rounding)."""
+    world = random_world(3, 10)
+    ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+    links = LinkModel(ws)
+    pairs = [
+        (Pose(2.0 + 0.3 * i, 3.0 - 0.1 * i, 0.1 * i), world.goal) for i in range(PREFETCH_MIN_HEURISTIC + 2)
+    ]
+    links.prefetch(pairs)
+    assert ws.stats.batched == len(pairs)
+    for p0, p1 in pairs:
+        u = links.union(p0, p1)
+        geo = intrinsic(p0, p1)
+        assert u is not None
+        assert u.alpha == pytest.approx(heuristic_alpha(geo.d, geo.phi0, geo.phi1, ws.L), abs=1e-12)
+
+
+def test_exact_frames_of_two_pairs_are_batched():
+    """The exact method batches from two pairs on (its array path costs far less per pair):
+    each union then has the alpha of one array call on the pairs not yet known."""
+    from segplan.model.frame import optimal_alpha_intrinsic
+
+    world = random_world(3, 10)
+    ws = Workspace(world.enlarged, world.robot.L, world.free_bounds, world.robot.max_curvature)
+    links = LinkModel(ws, alpha_method="exact")
+    pairs = [(Pose(2.0, 3.0, 0.1), world.goal), (Pose(2.5, 2.0, -0.2), world.goal)]
+    known = (Pose(1.0, 1.0, 0.0), world.goal)
+    links.union(*known)  # known already: not batched again
+    links.prefetch([known, pairs[0]])
+    assert ws.stats.batched == 0  # one unknown pair: nothing to batch
+    links.prefetch([known, *pairs])
+    assert ws.stats.batched == 2
+    geos = [intrinsic(p0, p1) for p0, p1 in pairs]
+    d, phi0, phi1 = (np.array([getattr(g, k) for g in geos]) for k in ("d", "phi0", "phi1"))
+    batch = optimal_alpha_intrinsic(d, phi0, phi1, ws.L, method="exact")
+    for (p0, p1), a in zip(pairs, batch, strict=True):
+        assert links.union(p0, p1).alpha == pytest.approx(float(a), abs=1e-12)
+
+
 @pytest.mark.parametrize("origin", [(0.0, 0.0), (1e3, 0.0), (0.0, -1e3), (-1e3, 1e3)])
 def test_link_model_coincidence_tolerance(origin):
     """Points closer than 1e-9 x max(1, |coordinates|) have no union; a little farther, one."""
@@ -272,18 +312,20 @@ def test_certain_hits_are_real_hits_near_obstacles():
     assert certain > 20 and near_misses > 20  # both kinds of answer were exercised
 
 
+@pytest.mark.parametrize("piece", [0, 8, 15])
 @pytest.mark.parametrize("k", [20.0, 100.0, 200.0, 400.0])
-def test_curvature_bound_uses_the_slopes_vertex(k):
+def test_curvature_bound_uses_the_slopes_vertex(k, piece):
     """An S-curve whose slope's vertex lies inside a piece between the curvature samples.
 
-    In the frame, ``f'(x) = k (x - x_v)^2`` (``x_v`` between two of the 17 samples): the
+    In the frame, ``f'(x) = k (x - x_v)^2`` (``x_v`` in the middle of piece ``piece`` of the
+    16 between the 17 samples, the first and the last included): the
     curvature peaks on both sides of ``x_v``, between the samples, where ``|f'|`` is below
     its values at the piece's ends. The piecewise bound must use the least ``|f'|`` on the
     piece (at the vertex of the parabola ``f'``): with the ends' values only, it would pass
     a union whose curvature exceeds the limit. Checked just below and above the exact maximum.
     """
     X = 4.0
-    xv = X * 8.5 / 16
+    xv = X * (piece + 0.5) / 16
     fX = k / 3.0 * ((X - xv) ** 3 + xv**3)
     p0 = Pose(0.0, 0.0, math.atan(k * xv**2))
     p1 = Pose(X, fX, math.atan(k * (X - xv) ** 2))

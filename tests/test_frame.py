@@ -311,7 +311,9 @@ def test_stored_fit_is_the_fit_and_an_immutable_constant():
     assert not fit.coef.flags.writeable
     with pytest.raises(ValueError):
         fit.coef[0] = 0.0
-    assert not any(isinstance(v, dict) for k, v in vars(frame_module).items() if not k.startswith("__"))
+    # no module state (mutmut's tables of a mutated copy aside: benchmarks/mutation.py)
+    state = [k for k, v in vars(frame_module).items() if isinstance(v, dict) and not k.startswith("__")]
+    assert not [k for k in state if not k.startswith("mutants_x")]
     again = fit_heuristic()  # refitted here; the package reads the stored coefficients
     # compared by the frames they give (segplan.fit.store.FRAME_ATOL says why not by coefficient)
     grid = frame_check_grid()
@@ -382,3 +384,28 @@ def test_non_finite_scalar_is_named(which):
 def test_exported_from_the_package():
     assert segplan.optimal_alpha is optimal_alpha
     assert "optimal_alpha" in segplan.__all__
+
+
+@pytest.mark.parametrize("method", ["heuristic", "exact", "parabola"])
+def test_coincident_points_have_no_reference_system(method):
+    """``d <= 0`` is refused by every method, naming the chord length (also inside an array)."""
+    for d in (0.0, -1.0, np.array([2.0, 0.0])):
+        with pytest.raises(ValueError, match="chord length"):
+            optimal_alpha_intrinsic(d, 0.2, -0.1, 1.0, method=method)
+
+
+def test_the_scalar_path_of_another_fit_is_that_fits():
+    """A fit other than the stored one (here a copy, the same numbers in another object) goes
+    through the scalar path's own terms: the same frames as the stored fit's, and as the
+    array path's."""
+    fit = heuristic_coefficients()
+    other = fit._replace(coef=fit.coef.copy())
+    assert other is not fit
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        d, p0, p1 = rng.uniform(0.5, 20.0), *rng.uniform(-1.4, 1.4, 2)
+        one = heuristic_alpha(d, p0, p1, 1.0, fit=other)
+        assert one == pytest.approx(heuristic_alpha(d, p0, p1, 1.0, fit=fit), abs=1e-14)
+        assert one == pytest.approx(
+            float(heuristic_alpha(np.array([d]), p0, p1, 1.0, fit=other)[0]), abs=1e-12
+        )

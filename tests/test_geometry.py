@@ -34,6 +34,7 @@ from hypothesis import strategies as st
 
 import segplan
 from segplan.floor import geometry as geo
+from segplan.floor.random_floors import random_convex_polygon
 
 L = 1.0
 START, GOAL = (-3000.0, 2500.0, 0.0), (-2990.0, 2500.0, 0.0)  # far from every polygon: a free direct union
@@ -344,3 +345,58 @@ def test_rejection_says_what_is_wrong(pts, pattern):
     not "collinear", and a dent is named by the sense it turns against the rest of the ring."""
     with pytest.raises(ValueError, match=pattern):
         geo.check_convex_polygon(pts)
+
+
+def test_a_figure_eight_is_named_by_its_larger_lobe():
+    """A ring that turns through 0 in all (a bow tie) has no sense of its own: the validator
+    takes that of its larger lobe (the sign of its area; GEOS's orientation agrees), so the
+    smaller lobe's vertices are named as turning against it."""
+    bow_tie = [[3.0, -2.0], [3.0, 2.0], [-1.0, -0.5], [-1.0, 0.5]]  # lobes of area 4.8 and 1.2
+    ring = shapely.LinearRing(bow_tie)
+    assert not ring.is_simple and ring.is_ccw
+    with pytest.raises(ValueError, match=r"turns clockwise at vertex 2 .* but counter-clockwise at vertex 0"):
+        geo.check_convex_polygon(bow_tie)
+    with pytest.raises(ValueError, match=r"turns counter-clockwise at vertex 0 .* but clockwise at vertex 2"):
+        geo.check_convex_polygon(bow_tie[::-1])
+
+
+def test_a_ring_closed_by_repeating_its_first_vertex_is_opened_and_other_repeats_refused():
+    """A closing copy of the first vertex (GeoJSON, WKT, CAD) is dropped (issue 27); a vertex
+    repeated elsewhere is still refused, naming both."""
+    closed = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [0.0, 0.0]]
+    assert geo.check_convex_polygon(closed).tolist() == closed[:4]
+    with pytest.raises(ValueError, match=r"vertex 3 repeats vertex 1 \[2.0, 0.0\]$"):
+        geo.check_convex_polygon([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]])
+
+
+def test_a_polygon_made_without_checks_has_float_vertices():
+    """``ConvexPolygon(..., check=False)`` (the caller vouches for convexity) still stores
+    float vertices, from integer ones too."""
+    p = geo.ConvexPolygon([[0, 0], [2, 0], [0, 2]], check=False)
+    assert p.vertices.dtype == np.float64 and p.vertices.tolist() == [[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]]
+
+
+@pytest.mark.parametrize("check", [True, False])
+def test_a_polygons_circle_is_its_bounding_boxs_centre_and_farthest_vertex(check):
+    """``centre``: the bounding box's centre; ``radius``: the farthest vertex from it (the
+    paper's ``r_max``), against shapely's box and distances."""
+    rng = np.random.default_rng(4)
+    for _ in range(20):
+        pts = random_convex_polygon(rng, tuple(rng.uniform(-50.0, 50.0, 2)), float(rng.uniform(0.1, 10.0)), 8)
+        p = geo.ConvexPolygon(pts, check=check)
+        shape = shapely.Polygon(pts)
+        x0, y0, x1, y1 = shape.bounds
+        assert p.centre == pytest.approx((0.5 * (x0 + x1), 0.5 * (y0 + y1)), abs=1e-12)
+        centre = shapely.Point(p.centre)
+        far = max(centre.distance(shapely.Point(q)) for q in pts)
+        assert p.radius == pytest.approx(far, rel=1e-12)
+        assert p.box == pytest.approx(shape.bounds, abs=0.0)
+
+
+def test_the_touching_tolerance_is_relative_to_the_scene():
+    """Scaling the scene (the segment, the polygon's circle, their place) scales it."""
+    base = geo.touch_tolerance(1.0, -2.0, 1.5, (3.0, 0.5), 0.8)
+    assert base > 0.0
+    for k in (1e-3, 10.0, 1e4):
+        scaled = geo.touch_tolerance(k * 1.0, k * -2.0, k * 1.5, (k * 3.0, k * 0.5), k * 0.8)
+        assert scaled == pytest.approx(k * base, rel=1e-12)

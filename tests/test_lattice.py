@@ -165,6 +165,25 @@ def test_enclosed_goal_fails_fast_with_the_explored_tree():
     # is chapter 9's target): the flood fill answers before the lattice expands one state
     assert err.reason == "exhausted" and err.expanded == 0 and "not connected" in str(err)
     assert err.best.nodes[0] == sc.start
+    assert err.best.cost == err.best.search_cost == 0.0 and 0.0 <= err.best.seconds <= err.seconds
+
+
+def test_a_stopped_search_reports_its_best_chain_at_its_cost():
+    """Stopped by its limit, the lattice search's best plan is the chain of lattice edges to
+    the state closest to the goal: its cost (and its search cost: there is no goal term) is
+    the chain's exact LONGD [1], and it says how long it took."""
+    from segplan.model.cost import longd_exact
+    from segplan.planning.lattice.search import lattice_search
+
+    sc = segplan.load_scenario(SCENARIOS / "turn_around.json")
+    with pytest.raises(NoPathError) as info:
+        lattice_search(sc, max_expansions=5, escapes=False)  # it plans in 6
+    err = info.value
+    best = err.best
+    assert err.reason == "expansions" and len(best.unions) >= 2 and set(best.kinds[1:]) == {"lattice"}
+    exact = sum(longd_exact(u.p0, u.p1, u.alpha, u.L, rtol=1e-10) for u in best.unions)
+    assert best.cost == pytest.approx(exact, rel=1e-7) and best.search_cost == best.cost
+    assert 0.0 <= best.seconds <= err.seconds
 
 
 def test_limits_stay_arguments():

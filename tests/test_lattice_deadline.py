@@ -39,3 +39,7 @@ def test_shortcuts_stop_at_the_deadline():
     )
     assert len(timely.nodes) < len(plan.nodes)
     assert shortcut_plan(plan, s.ex, s.grid, 0.0, SCHEDULE.shortcut_window).nodes == timely.nodes
+    # the shortened plan's time counts from the planning's start, its shortcuts included
+    before = time.perf_counter()
+    again = shortcut_plan(plan, s.ex, s.grid, before - 100.0, SCHEDULE.shortcut_window)
+    assert again.nodes == timely.nodes and 100.0 <= again.seconds <= time.perf_counter() - before + 100.0

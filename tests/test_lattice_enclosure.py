@@ -36,6 +36,29 @@ def test_enclosed_goal_stops_early():
     assert e.best is not None and e.best.nodes[0] == sc.start
 
 
+@pytest.mark.parametrize("name", ["wall_ahead_same", "corridor"])
+def test_the_enclosure_is_judged_once_the_tree_is_due(monkeypatch, name):
+    """The goal's enclosure is judged when the approach tree is built (``approach_after``
+    expansions) and, if the tree is not exhausted then, once more at ``enclosure_after``:
+    a search that plans before that counts the states that reach the goal (``reach_all``)
+    never, and asks whether the start joins them at most once."""
+    from segplan.planning.lattice.approach import GoalApproach
+    from segplan.studies.floors import hard_cases
+
+    calls = []
+    for method in ("reach_all", "start_joins"):
+        original = getattr(GoalApproach, method)
+
+        def spy(self, *a, _original=original, _name=method, **kw):
+            calls.append(_name)
+            return _original(self, *a, **kw)
+
+        monkeypatch.setattr(GoalApproach, method, spy)
+    plan, outcome, _ = plan_of(astar_of(hard_cases()[name]))
+    assert outcome == "found" and SCHEDULE.approach_after < plan.expanded < SCHEDULE.enclosure_after
+    assert "reach_all" not in calls and calls.count("start_joins") <= 1
+
+
 def test_forward_search_alone_finds_no_plan_either():
     """Without the approach tree (so without the enclosure test), the forward search finds no
     plan there either."""
@@ -122,11 +145,23 @@ def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
                 out.append((ws.colliding(u, first=False), sorted(ws.facts(u).near.items())))
         return out, ws.stats.broad_rejections
 
+    def some_first():  # a few obstacles asked about first: the broad phase then skips them
+        ws = validity.Workspace(sc.enlarged, sc.robot.L, fb, sc.robot.max_curvature)
+        links = LinkModel(ws)
+        out = []
+        for a, b in zip(poses[:-1], poses[1:], strict=True):
+            u = links.union(a, Pose(a.x + (b.x - a.x) * 0.2, a.y + (b.y - a.y) * 0.2, b.theta))
+            if u is not None:
+                out.append((ws.colliding(u, only=list(range(0, 128, 9))), ws.colliding(u, first=False)))
+        return out
+
     vector = run()
+    vector_some = some_first()
     monkeypatch.setattr(validity, "VECTOR_SCREEN_MIN", 10**9)
     scalar = run()
-    assert vector == scalar
+    assert vector == scalar and vector_some == some_first()
     assert vector[1] > 0 and any(isinstance(x, tuple) and x[0] for x in vector[0])
+    assert [second for _, second in vector_some] == [x[0] for x in vector[0] if isinstance(x, tuple)]
 
 
 def _tree_of(sc, max_expansions):

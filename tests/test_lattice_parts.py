@@ -167,6 +167,8 @@ def test_repair_within_a_budget_and_without_a_passing_edge():
     assert edges.repair([(5.0, "a", ("a", 0))], budget=4.5) is None
     assert ("a", 0) in edges.failed  # over the budget: not used again
     assert edges.repair([]) is None
+    edges.reset()
+    assert edges.repair([(4.5, "a", ("a", 0))], budget=4.5) == (4.5, "a", ("a", 0))  # within: at it too
 
 
 # -- the schedule ----------------------------------------------------------------------------
@@ -261,3 +263,67 @@ def test_a_robot_that_cannot_turn_on_the_floor_is_refused_at_once(steer_deg, mon
         segplan.plan_scenario(sc)
     with pytest.raises(segplan.NoPathError):
         segplan.plan_scenario(sc, planner="paper", max_expansions=50)
+
+
+def test_a_schedule_accepts_each_field_at_its_bound():
+    """The bounds the fields are refused beyond are themselves accepted: no approach tries, a
+    guided weight of 1, a grid margin of 0 (the grid then covers the floor's items exactly)."""
+    s = Schedule(approach_tries=0, guided_weight=1.0, grid_margin=(0.0, 0.0), deadline_every=1)
+    assert s.margin(1.0, 2.0) == 0.0
+    assert Schedule(grid_margin=(0.0, 0.5)).margin(1.0, 2.0) == 1.0
+    assert Schedule(grid_margin=(0.25, 0.0)).margin(2.0, 1.0) == 0.5
+
+
+# -- the planner composed of its parts ------------------------------------------------------
+def _behind_a_wall():
+    """No walls; the goal behind a wall, facing back: the direct union is blocked."""
+    from segplan import Robot, make_scenario
+
+    wall = [[-3.0, 1.2], [3.0, 1.2], [3.0, 1.8], [-3.0, 1.8]]
+    return make_scenario(Robot(1.0), (0.0, 0.0, 0.0), (0.0, 3.0, 3.14), [wall])
+
+
+def _searched(plan):
+    return plan.expanded, plan.generated, plan.search_cost
+
+
+def test_the_planners_options_reach_its_search():
+    """``lattice_search`` (one resolution, no tight arcs) makes the search that
+    :func:`astar_of` composes with the same resolution and schedule: the same expansions,
+    states and search cost; and those options matter on this floor (a coarser lattice, a
+    clearance grid without margin: other searches)."""
+    from segplan.planning.lattice.search import lattice_search
+
+    sc = _behind_a_wall()
+    bare = dataclasses.replace(SCHEDULE, grid_margin=(0.0, 0.0))
+    runs = {}
+    for resolution, schedule in ((None, SCHEDULE), (0.25, SCHEDULE), (None, bare)):
+        plan, _ = lattice_search(sc, resolution=resolution, retry=False, escapes=False, schedule=schedule)
+        composed, outcome, _ = plan_of(astar_of(sc, resolution=resolution, schedule=schedule))
+        assert outcome == "found" and _searched(plan) == _searched(composed)
+        runs[resolution, schedule.grid_margin] = _searched(plan)
+    assert len(set(runs.values())) == 3
+
+
+def test_a_large_floor_coarsens_the_lattice_unless_the_resolution_is_given():
+    """Where the clearance grid would exceed ``MAX_CELLS`` (its estimate: half the square of
+    the floor's width plus height, any rotation), the retry is dropped and then, only when no
+    resolution was given, the lattice coarsens by halves (up to ``L``): the first of ``L / 8``,
+    ``L / 4``, ... whose cells fit. A given resolution is kept."""
+    from segplan import Robot, make_scenario
+    from segplan.planning.lattice.clearance import MAX_CELLS
+
+    def floor(size):
+        return make_scenario(
+            Robot(1.0), (1.0, 1.0, 0.0), (size - 2.0, size - 2.0, 0.0), [], (0, 0, size, size)
+        )
+
+    assert lattice_resolutions(floor(20.0), None, True, None) == ([0.125, 0.0625], 0.0625)
+    for size in (150.0, 400.0, 700.0):
+        area = 0.5 * (2.0 * size) ** 2
+        r = 0.125
+        while area / r**2 > MAX_CELLS and 2.0 * r <= 1.0:
+            r *= 2.0
+        assert r > 0.125  # these floors do coarsen
+        assert lattice_resolutions(floor(size), None, True, None) == ([r], r)
+        assert lattice_resolutions(floor(size), 0.125, True, None) == ([0.125], 0.125)

@@ -194,6 +194,43 @@ def test_plan_scenario_turns_its_arguments_into_options_at_the_door():
                 api.planner_options(sc, **kwargs)
 
 
+def test_a_plans_summary_is_plain_json_of_its_fields():
+    """``Plan.to_dict``: every field, angles in degrees (as scenario files), the refinement's
+    and the options' own summaries; plain JSON."""
+    import json
+
+    sc = segplan.load_scenario("single_obstacle")
+    plan = segplan.plan_scenario(sc)
+    d = plan.to_dict()
+    back = json.loads(json.dumps(d))  # plain JSON (the options' pairs come back as lists)
+    assert {k: v for k, v in back.items() if k != "options"} == {k: v for k, v in d.items() if k != "options"}
+    assert d["nodes"] == [[p.x, p.y, math.degrees(p.theta)] for p in plan.nodes]
+    assert d["alphas_deg"] == [math.degrees(u.alpha) for u in plan.unions] and d["kinds"] == list(plan.kinds)
+    for name in ("cost", "search_cost", "expanded", "generated", "seconds", "heuristic", "cost_kind"):
+        assert d[name] == getattr(plan, name), name
+    for name in ("version", "collision_checks", "exact_checks", "planner"):
+        assert d[name] == getattr(plan, name), name
+    assert plan.refinement is not None and d["refinement"] == dataclasses.asdict(plan.refinement)
+    assert d["options"] == plan.options.to_dict() and d["L"] == plan.unions[0].L
+    assert len(d) == 17
+
+
+def test_the_search_limits_are_checked_naming_the_argument():
+    import re
+
+    from segplan.planning.plan import check_limits
+
+    assert check_limits(None, 10) == (None, 10.0) and check_limits(5, 0.5) == (5, 0.5)
+    for args, message in (
+        ((0, 1.0), "max_expansions must be an integer >= 1, got 0"),
+        ((2.5, 1.0), "max_expansions must be an integer >= 1, got 2.5"),
+        ((1, 0.0), "time_limit must be a finite number > 0.0, got 0.0"),
+        ((1, math.inf), "time_limit must be a finite number > 0.0, got inf"),
+    ):
+        with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+            check_limits(*args)
+
+
 def test_a_plan_records_its_planner_and_options():
     sc = segplan.load_scenario("single_obstacle")
     default = segplan.plan_scenario(sc)

@@ -7,6 +7,7 @@ the sampled path, and exact equality of the end poses.
 """
 
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -134,6 +135,62 @@ def test_trivial_plans():
     assert len(straight.unions) == 1 and math.isclose(straight.cost, 5.0, rel_tol=1e-9)
 
 
+def _line_search(max_turn_chain, reset_every=0):
+    """The search alone on a line graph: from x = 0 each node has one successor at x + 1, of
+    kind ``"turn"`` (``"vertex"`` every ``reset_every``-th step), offered only while the
+    search allows turn states, except vertex steps; at x = 8 the goal. Returns the plan or the
+    ``NoPathError`` and the ``(x, turns)`` of each expansion."""
+    from types import SimpleNamespace
+
+    from segplan.planning.paper.search import astar
+
+    goal = Pose(8.0, 0.0, 0.0)
+    problem = SimpleNamespace(
+        start=Pose(0.0, 0.0, 0.0),
+        goal=goal,
+        cost_to_go=lambda pose, depth: goal.x - pose.x,
+        link_cost=lambda union: 1.0,
+        prepare=lambda poses: None,
+    )
+    calls = []
+
+    def successors(pose, turns):
+        calls.append((pose.x, turns))
+        x = pose.x + 1.0
+        if x == goal.x:
+            return [SimpleNamespace(pose=goal, union=None, kind="goal", key=("goal",))]
+        kind = "vertex" if reset_every and int(x) % reset_every == 0 else "turn"
+        if kind == "turn" and not turns:
+            return []
+        return [SimpleNamespace(pose=Pose(x, 0.0, 0.0), union=None, kind=kind, key=(kind, x))]
+
+    def finish(nodes, unions, kinds, search_cost, expanded, generated):
+        return nodes, kinds, search_cost
+
+    try:
+        out = astar(problem, successors, finish, max_expansions=100, time_limit=60.0, t0=time.perf_counter(),
+                    max_turn_chain=max_turn_chain)  # fmt: skip
+    except NoPathError as exc:
+        out = exc
+    return out, calls
+
+
+def test_chains_of_turn_states_are_cut_at_max_turn_chain():
+    """``max_turn_chain``: a node ending k consecutive turn states may have turn successors only
+    while k < max_turn_chain; a node of another kind starts the count again."""
+    for limit in (1, 4):
+        out, calls = _line_search(limit)
+        # the node at x ends a chain of x turn states: turns allowed while x < limit
+        assert calls == [(float(x), x < limit) for x in range(limit + 1)]
+        assert isinstance(out, NoPathError) and out.reason == "exhausted" and out.expanded == limit + 1
+    nodes, kinds, cost = _line_search(20)[0]
+    assert len(nodes) == 9 and cost == 8.0 and kinds[-1] == "goal"
+    # a vertex state every third step: the node at x ends x % 3 turn states, the goal is reached
+    (nodes, kinds, _), calls = _line_search(2, reset_every=3)
+    assert kinds == ("start", "turn", "turn", "vertex", "turn", "turn", "vertex", "turn", "goal")
+    assert calls == [(float(x), x % 3 < 2) for x in range(8)]
+
+
 # -- no path: bounded search, what was explored -------------------------------------------
 def test_enclosed_goal_raises_no_path_error():
     ring = [
@@ -199,6 +256,13 @@ def test_bad_input_raises_value_error(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         plan(args.pop("start"), args.pop("goal"), args.pop("obstacles"), args.pop("L"), **args)
+
+
+def test_a_bad_problem_given_to_plan_is_reported_as_plan_s():
+    """``plan()`` makes the scenario: its errors name ``plan()`` as their source, as a
+    scenario file's name its path (``make_scenario(source=...)``)."""
+    with pytest.raises(segplan.ScenarioError, match=r"^plan\(\): start .*collides"):
+        plan((0.0, 0.0, 0.0), (8.0, 0.0, 0.0), [[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]], 1.0)
 
 
 def test_plan_scenario_rejects_non_scenario():
