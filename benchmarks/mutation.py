@@ -24,10 +24,10 @@ modules of ``planning/`` x 10 (issue 24).
 
 The stored run is ``benchmarks/results/mutation.json`` (its ``meta`` says when, on which
 commit, with which command and seed); the survivors judged equivalent are listed, each with
-its reason, in ``benchmarks/results/mutation_equivalent.md``. The README's kill rates are
+its reason, in ``benchmarks/results/mutation_equivalent.md``. The kill rates in ``CONTRIBUTING.md`` are
 written from those two files, never typed::
 
-    python benchmarks/mutation.py --readme     # rewrite the README's block; runs nothing
+    python benchmarks/mutation.py --readme     # rewrite CONTRIBUTING.md's block; runs nothing
 """
 
 from __future__ import annotations
@@ -336,7 +336,7 @@ def summary(stored: dict, equivalent: set[str]) -> list[dict]:
 
 
 def readme_block(stored: dict, equivalent: set[str]) -> str:
-    """The README's table of kill rates, from the stored run and the equivalent list."""
+    """The table of kill rates in CONTRIBUTING.md, from the stored run and the equivalent list."""
     meta, rows = stored["meta"], summary(stored, equivalent)
     lines = [
         f"Measured on {meta['when']} at commit `{meta['commit'][:12]}`, mutmut {meta['mutmut']}, "
@@ -383,7 +383,7 @@ def readme_block(stored: dict, equivalent: set[str]) -> str:
     return "\n".join(lines)
 
 
-def write_readme(readme: Path = ROOT / "README.md") -> None:
+def write_readme(readme: Path = ROOT / "CONTRIBUTING.md") -> None:
     stored = json.loads(STORED.read_text())
     text = readme.read_text()
     head, rest = text.split(START, 1)
@@ -479,7 +479,7 @@ def main(argv=None) -> int:
     parser.add_argument("--json", type=Path, help="write the results here")
     parser.add_argument("--show", action="store_true", help="keep the survivors' diffs")
     parser.add_argument("--log", type=Path, default=Path(tempfile.gettempdir()) / "segplan-mutmut.log")
-    parser.add_argument("--readme", action="store_true", help="only rewrite the README's block")
+    parser.add_argument("--readme", action="store_true", help="only rewrite CONTRIBUTING.md's block")
     parser.add_argument(
         "--merge",
         type=Path,
