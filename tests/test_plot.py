@@ -56,11 +56,36 @@ def test_union_on_given_axes_with_label():
 def test_plan_obstacles_bounds():
     u1 = segplan.Union(P0, P1, 0.3, 1.0)
     u2 = segplan.Union(P1, (8.0, 0.0, 0.0), 0.0, 1.0)
-    ax = plot.plot_plan([u1, u2], obstacles=[[(2, 2), (3, 2), (3, 3)]], bounds=(-1, -2, 10, 4))
+    ax = plot.plot_plan([u1, u2], obstacles=[[(2, 2), (3, 2), (3, 3)]], bounds=(-1, -2, 10, 4), label="plan")
     assert [line.get_label() for line in ax.lines].count("plan") == 1
     assert len(ax.patches) == 2  # the obstacle and the bounds
     x0, x1 = ax.get_xlim()
     assert x0 <= -1 and x1 >= 10
+
+
+def test_a_plan_has_both_paths_in_the_legend_beside_the_floor():
+    """Without a label, a plan's rear path A and its dashed front-wheel path B each get one
+    legend entry; legend_beside puts the legend right of the axes, off the floor."""
+    u1 = segplan.Union(P0, P1, 0.3, 1.0)
+    u2 = segplan.Union(P1, (8.0, 0.0, 0.0), 0.0, 1.0)
+    ax = plot.plot_plan([u1, u2], obstacles=[[(2, 2), (3, 2), (3, 3)]], bounds=(-1, -2, 10, 4))
+    legend = plot.legend_beside(ax)
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert texts == ["obstacle", plot.REAR_LABEL, plot.FRONT_LABEL]
+    front = _lines(ax)[plot.FRONT_LABEL]
+    assert front.get_linestyle() == "--"
+    np.testing.assert_array_equal(front.get_xydata(), u1.front(201))
+    ax.figure.canvas.draw()
+    assert legend.get_window_extent().x0 >= ax.get_window_extent().x1  # outside the axes
+
+
+def test_floor_of_a_map_has_walls_and_obstacles_only():
+    floor = segplan.Floor.from_polygons([[(4, 1), (6, 1), (5, 3)]], (0, 0, 10, 7))
+    ax = plot.plot_floor(floor)
+    assert [p.get_label() for p in ax.patches][1:] == ["obstacle"] and not ax.lines
+    robot0 = segplan.make_scenario(segplan.Robot(1.0), (0.5, 0.5, 0.0), (8.0, 5.0, 0.5), floor)
+    ax = plot.plot_floor(robot0)  # no half-width: no enlargement drawn over the obstacles
+    assert "enlarged obstacle" not in [p.get_label() for p in ax.patches]
 
 
 def test_floor_draws_walls_obstacles_and_poses():

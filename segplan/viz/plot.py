@@ -24,15 +24,19 @@ from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Rectangle
 
 from ..floor.geometry import check_bounds
+from ..floor.maps import Floor
 from ..floor.scenario import Scenario
 from ..model.cost import longd_exact
 from ..model.pose import Pose, as_pose, check_length, feasible_alpha_interval, intrinsic
 from ..model.union import Union
 
 __all__ = [
+    "FRONT_LABEL",
     "FRONT_STYLE",
+    "REAR_LABEL",
     "REAR_STYLE",
     "ROBOT_STYLE",
+    "legend_beside",
     "plot_bounds",
     "plot_floor",
     "plot_longd",
@@ -45,6 +49,10 @@ __all__ = [
 REAR_STYLE = {"linestyle": "-", "linewidth": 1.8}
 FRONT_STYLE = {"linestyle": "--", "linewidth": 1.4}
 ROBOT_STYLE = {"color": "0.35", "linewidth": 1.0}
+#: Legend labels of the two paths of a plan: the rear-axle point A's and the front wheel B's
+#: (whose length is LONGD, formula [1]).
+REAR_LABEL = "rear path A"
+FRONT_LABEL = "front-wheel path B"
 
 
 # -- helpers ---------------------------------------------------------------------------
@@ -155,8 +163,8 @@ def plot_union(
         Colour of both paths (the next colour of the cycle when ``None``).
     label : str, optional
         Legend label of the rear path (the front-wheel path, same colour, dashed, then stays
-        out of the legend); without one the paths are labelled ``"rear path A"`` and
-        ``"front-wheel path B"``.
+        out of the legend); without one the paths are labelled :data:`REAR_LABEL` and
+        :data:`FRONT_LABEL`.
     legend : bool
         Give the paths legend labels (``False`` keeps them out of the legend).
 
@@ -172,8 +180,8 @@ def plot_union(
     if robots == 1:
         raise ValueError("robots must be 0 or >= 2 (the ends are always included), got 1")
     ax = _axes(ax)
-    rear_label = (label or "rear path A") if legend else "_nolegend_"
-    front_label = "front-wheel path B" if legend and not label else "_nolegend_"
+    rear_label = (label or REAR_LABEL) if legend else "_nolegend_"
+    front_label = FRONT_LABEL if legend and not label else "_nolegend_"
     if rear:
         a = union.rear(n)
         (line,) = ax.plot(a[:, 0], a[:, 1], color=color, label=rear_label, **REAR_STYLE)
@@ -200,7 +208,7 @@ def plot_plan(
     bounds: Sequence[float] | None = None,
     robots: int = 3,
     color: str = "C0",
-    label: str | None = "plan",
+    label: str | None = None,
 ) -> Axes:
     """Draw a plan, a sequence of unions joined at their nodes, over obstacles and bounds.
 
@@ -217,7 +225,9 @@ def plot_plan(
     color : str
         Colour of the paths.
     label : str, optional
-        Legend label of the plan's rear path (given once).
+        Legend label of the plan's rear path, given once (the front-wheel path then stays out
+        of the legend, as in :func:`plot_union`); without one both paths get a legend entry,
+        :data:`REAR_LABEL` and :data:`FRONT_LABEL`.
 
     Raises
     ------
@@ -236,8 +246,18 @@ def plot_plan(
     if obstacles is not None:
         plot_polygons(obstacles, ax)
     for i, u in enumerate(unions):
-        plot_union(u, ax, robots=robots, color=color, label=label, legend=i == 0 and label is not None)
+        plot_union(u, ax, robots=robots, color=color, label=label, legend=i == 0)
     return _plane(ax)
+
+
+def legend_beside(ax: Axes, **kwargs):
+    """The axes' legend outside them, on their right, top-aligned: never over a wall or an obstacle.
+
+    A figure saved with ``bbox_inches="tight"``, or laid out by matplotlib's constrained
+    layout, makes room for it. ``kwargs`` go to :meth:`matplotlib.axes.Axes.legend`.
+    """
+    options = {"loc": "upper left", "bbox_to_anchor": (1.02, 1.0), "borderaxespad": 0.0, "fontsize": "small"}
+    return ax.legend(**(options | kwargs))
 
 
 # -- the world -------------------------------------------------------------------------
@@ -298,7 +318,7 @@ def plot_bounds(bounds: Sequence[float], ax: Axes | None = None, *, color: str =
 
 
 def plot_floor(
-    scenario: Scenario,
+    scenario: Scenario | Floor,
     ax: Axes | None = None,
     *,
     enlarged: tuple[str, str] = ("0.85", "0.25"),
@@ -311,14 +331,16 @@ def plot_floor(
 
     The planning model of section "Results. Graph-search": the obstacles (darker) inside
     their enlargement by the robot's half-width (lighter), in which the segment A->B is
-    planned, and the robot at start and goal (:func:`plot_pose`).
+    planned, and the robot at start and goal (:func:`plot_pose`). A :class:`segplan.Floor`
+    (a map before a robot is put in it) has walls and obstacles only.
 
     Parameters
     ----------
-    scenario : segplan.Scenario
+    scenario : segplan.Scenario or segplan.Floor
     enlarged, obstacles : (facecolor, edgecolor)
         Colours of the enlarged and of the given obstacles (legend labels "enlarged
-        obstacle" and "obstacle").
+        obstacle" and "obstacle"); the enlargement is drawn for a robot of positive
+        half-width only.
     bounds : bool
         Outline the walls (if the scenario has any, :func:`plot_bounds`).
     poses : bool
@@ -327,18 +349,22 @@ def plot_floor(
     Raises
     ------
     ValueError
-        ``scenario`` is not a :class:`segplan.Scenario`.
+        ``scenario`` is neither a :class:`segplan.Scenario` nor a :class:`segplan.Floor`.
     """
-    if not isinstance(scenario, Scenario):
-        raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    if not isinstance(scenario, Scenario | Floor):
+        raise ValueError(
+            f"scenario must be a segplan.Scenario or a segplan.Floor, got {type(scenario).__name__}"
+        )
     ax = _axes(ax)
     if bounds and scenario.bounds is not None:
         plot_bounds(scenario.bounds, ax)
-    plot_polygons(
-        scenario.enlarged, ax, facecolor=enlarged[0], edgecolor=enlarged[1], label="enlarged obstacle"
-    )
+    is_scenario = isinstance(scenario, Scenario)
+    if is_scenario and scenario.robot.half_width > 0:
+        plot_polygons(
+            scenario.enlarged, ax, facecolor=enlarged[0], edgecolor=enlarged[1], label="enlarged obstacle"
+        )
     plot_polygons(scenario.outlines, ax, facecolor=obstacles[0], edgecolor=obstacles[1], label="obstacle")
-    if poses:
+    if poses and is_scenario:
         for pose in (scenario.start, scenario.goal):
             plot_pose(pose, scenario.L, ax, color=pose_color)
     return _plane(ax)
