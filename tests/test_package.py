@@ -56,11 +56,19 @@ def test_python_dash_m_segplan():
 
 
 def test_animate_gif(tmp_path, capsys):
+    """The default GIF: readable (at least 600 pixels wide), its frames by the path's length."""
+    from segplan.viz import animate
+
     gif = tmp_path / "plan.gif"
     assert main(["plan", "single_obstacle", "--animate", str(gif)]) == 0
     assert f"animation   {gif}" in capsys.readouterr().out
+    sc = segplan.load_scenario("single_obstacle")
+    poses = segplan.plan_poses(segplan.plan_scenario(sc))
+    frames = animate.frame_count(animate._front_arc_length(poses, sc.L)[-1], sc.L)
+    assert animate.MIN_FRAMES < frames < animate.MAX_FRAMES  # neither bound: the length decides
     with Image.open(gif) as im:
-        assert im.format == "GIF" and im.n_frames == segplan.viz.animate.FRAMES
+        assert im.format == "GIF" and im.n_frames == frames
+        assert im.size[0] >= 600 and im.info["duration"] == 1000 / animate.FPS
 
 
 def test_animation_frames_follow_the_front_wheel():
@@ -101,7 +109,8 @@ def test_html_animation_frames_are_small_palette_pngs():
         with Image.open(io.BytesIO(base64.b64decode(b64.replace("\\\n", "")))) as im:
             assert im.format == "PNG" and im.mode == "P" and len(im.getcolors()) <= animate.HTML_COLORS
             w, h = im.size  # animate_path's figsize x dpi, to a pixel
-            assert abs(w - 5.5 * 50) <= 1 and abs(h - 3.8 * 50) <= 1
+            (fw, fh), dpi = animate.FIGSIZE, animate.DPI
+            assert abs(w - fw * dpi) <= 1 and abs(h - fh * dpi) <= 1
 
 
 def test_license_and_citation():

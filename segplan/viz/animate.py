@@ -1,48 +1,150 @@
-"""The robot in motion: an animation of the segment driving a plan.
+"""The robot in motion: an animation of the robot driving a plan.
 
 Section "Mobile robot modelling" of Campoy et al. (1989): the robot is the oriented
 segment from A (middle of the rear axle) to B (middle of the front wheel), of length
-``L``; a plan is a chain of unions whose cost, formula [1], is the length of B's path.
-:func:`animate_plan` shows exactly that: at each frame the segment A->B at its pose on
-the plan, the trace of A (rear, solid) and of B (front wheel, dashed) behind it, over the
-floor (obstacles, their enlargement by the robot's half-width, the walls, start and goal).
+``L``; its body is the set of points within ``half_width`` of that segment (the
+"curved rectangle" of Fig. 2 as the planner models it); a plan is a chain of unions whose
+cost, formula [1], is the length of B's path. :func:`animate_plan` shows exactly that: at
+each frame the body, the segment A->B at its pose on the plan, the trace of A (rear,
+solid) and of B (front wheel, dashed) behind it, over the floor (obstacles, their
+enlargement by the robot's half-width, the walls, start and goal), with the legend beside
+the floor.
 
 Frames are equally spaced in the *front wheel's* arc length, the paper's cost: the robot
-moves at constant front-wheel speed, as the cost assumes (traversal time).
+moves at constant front-wheel speed, as the cost assumes (traversal time). By default
+their number follows the path's length (:func:`frame_count`), so a long plan is not a
+few jumps and a short one is not a slow crawl.
 
 Outputs, both offline: :func:`to_html` (matplotlib's ``to_jshtml``: PNG frames and a
 small player in one HTML string, no network) and :func:`save_gif` (Pillow, installed with
-matplotlib). Like :mod:`segplan.viz.plot`, this module imports matplotlib; the algorithms do
-not.
+matplotlib). Like :mod:`segplan.viz.plot`, this module draws with matplotlib (the algorithms
+do not), imported when an animation is made: its settings (:data:`FPS`, :func:`frame_count`,
+:func:`check_animation`) load without it, so the command line checks them before planning
+and starts as fast without an animation.
 """
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.animation import FuncAnimation, PillowWriter
 
+from ..floor.geometry import finite_number
 from ..model.pose import check_length
 from .metrics import plan_poses
-from .plot import plot_bounds, plot_polygons, plot_pose
 
-__all__ = ["animate_path", "animate_plan", "save_gif", "to_html"]
+if TYPE_CHECKING:
+    from matplotlib.animation import FuncAnimation
 
-#: Default number of frames: enough for smooth motion, few enough for a small page.
-FRAMES = 24
+__all__ = [
+    "DPI",
+    "DPI_RANGE",
+    "FIGSIZE",
+    "FPS",
+    "FRAME_STEP",
+    "MAX_FPS",
+    "MAX_FRAMES",
+    "MIN_FRAMES",
+    "animate_path",
+    "animate_plan",
+    "check_animation",
+    "frame_count",
+    "save_gif",
+    "to_html",
+]
+
+#: Size of a frame in inches and its resolution: 6.4 x 4 in at 100 dpi is 640 x 400 pixels,
+#: wide enough for the floor beside its legend, and the text (10 pt) 14 pixels high.
+FIGSIZE = (6.4, 4.0)
+DPI = 100
+#: Resolutions accepted: below 20 dpi the text is a few pixels high; above 300 dpi a frame
+#: is wider than 1900 pixels and a GIF of a few hundred frames takes hundreds of megabytes.
+DPI_RANGE = (20, 300)
+#: Frames per second when played (a frame every 100 ms).
+FPS = 10
+#: Highest rate accepted: a GIF stores each frame's delay in hundredths of a second, and
+#: browsers play a delay under 20 ms as 100 ms, so a faster GIF would play slower.
+MAX_FPS = 50
+#: Front-wheel travel between frames by default, in robot lengths ``L``: consecutive bodies
+#: overlap by three quarters, so the eye follows one robot moving rather than a robot
+#: jumping; at :data:`FPS` that is 2.5 robot lengths a second (3 m/s for the book's 1.2 m
+#: robot).
+FRAME_STEP = 0.25
+#: Fewest frames by default: a short plan still plays 2.4 s at :data:`FPS`, long enough to
+#: follow.
+MIN_FRAMES = 24
+#: Most frames by default: 20 s at :data:`FPS`. It bounds the time to draw (each frame is
+#: drawn in full) and the file's size for a long plan on a large map; beyond it the frames
+#: are spaced more widely.
+MAX_FRAMES = 200
+
+
+def _whole(value, name: str, low: int, high: int | None = None) -> int:
+    """An integer within ``[low, high]``, else ValueError naming ``name``."""
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int | np.integer)
+        or value < low
+        or (high is not None and value > high)
+    ):
+        within = f">= {low}" if high is None else f"from {low} to {high}"
+        raise ValueError(f"{name} must be an integer {within}, got {value!r}")
+    return int(value)
+
+
+def check_animation(frames: int | None, fps: int, dpi: float, *, prefix: str = "") -> tuple:
+    """Validate an animation's ``frames`` (None: by the path's length, else >= 2), ``fps``
+    (1 to :data:`MAX_FPS`) and ``dpi`` (within :data:`DPI_RANGE`); returns them.
+
+    ``prefix`` goes before each name in the messages (the command line's ``"--"``).
+
+    Raises
+    ------
+    ValueError
+        One line naming the value that is out of range.
+    """
+    if frames is not None:
+        frames = _whole(frames, prefix + "frames", 2)
+    fps = _whole(fps, prefix + "fps", 1, MAX_FPS)
+    dpi = finite_number(dpi, prefix + "dpi")
+    if not DPI_RANGE[0] <= dpi <= DPI_RANGE[1]:
+        raise ValueError(f"{prefix}dpi must lie from {DPI_RANGE[0]} to {DPI_RANGE[1]}, got {dpi:g}")
+    return frames, fps, dpi
+
+
+def frame_count(front_length: float, L: float) -> int:
+    """The default number of frames of a path whose front wheel travels ``front_length`` (m):
+    one frame every :data:`FRAME_STEP` robot lengths ``L``, the first and last included,
+    within :data:`MIN_FRAMES` and :data:`MAX_FRAMES`."""
+    steps = math.ceil(finite_number(front_length, "front_length", 0.0) / (FRAME_STEP * check_length(L)))
+    return min(max(steps + 1, MIN_FRAMES), MAX_FRAMES)
+
+
+def _front_arc_length(poses: np.ndarray, L: float) -> np.ndarray:
+    """Arc length of the front wheel B at each pose, from 0 at the first."""
+    B = poses[:, :2] + L * np.column_stack((np.cos(poses[:, 2]), np.sin(poses[:, 2])))
+    return np.r_[0.0, np.cumsum(np.hypot(*np.diff(B, axis=0).T))]
 
 
 def _frame_indices(poses: np.ndarray, L: float, frames: int) -> np.ndarray:
     """Indices of ``frames`` poses equally spaced in front-wheel arc length (first and last kept)."""
-    B = poses[:, :2] + L * np.column_stack((np.cos(poses[:, 2]), np.sin(poses[:, 2])))
-    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(B, axis=0).T))]
+    s = _front_arc_length(poses, L)
     targets = np.linspace(0.0, s[-1], frames)
     idx = np.searchsorted(s, targets, side="left").clip(0, len(poses) - 1)
     idx[-1] = len(poses) - 1
     return idx
+
+
+def _body(L: float, half_width: float, arc_points: int = 9) -> np.ndarray:
+    """Outline ``(k, 2)`` of the robot's body at the pose ``(0, 0, 0)``: the points within
+    ``half_width`` of the segment from A = (0, 0) to B = (L, 0), its round ends as polygons
+    of ``arc_points`` points each."""
+    t = np.linspace(-0.5 * math.pi, 0.5 * math.pi, arc_points)
+    front = np.column_stack((L + half_width * np.cos(t), half_width * np.sin(t)))
+    return np.vstack((front, (L, 0.0) - front))  # the rear end: the front's turned half way round
 
 
 def animate_path(
@@ -50,13 +152,14 @@ def animate_path(
     L: float,
     scenario=None,
     *,
-    frames: int = FRAMES,
-    interval: int = 100,
-    figsize: tuple[float, float] = (5.5, 3.8),
-    dpi: int = 50,
+    half_width: float | None = None,
+    frames: int | None = None,
+    fps: int = FPS,
+    dpi: float = DPI,
+    figsize: tuple[float, float] = FIGSIZE,
     title: str | None = None,
 ) -> FuncAnimation:
-    """An animation of the segment robot following ``poses``.
+    """An animation of the robot following ``poses``.
 
     Parameters
     ----------
@@ -67,12 +170,19 @@ def animate_path(
         Length of the segment A->B (m).
     scenario : segplan.Scenario, optional
         The floor drawn underneath (obstacles, their enlargement, walls, start and goal).
-    frames : int
-        Number of frames (>= 2), equally spaced in front-wheel arc length.
-    interval : int
-        Milliseconds between frames when played.
-    figsize, dpi
-        Size of each frame; the defaults keep an embedded HTML animation small.
+    half_width : float, optional
+        The body's half-width (m): the robot is drawn as the points within it of A->B.
+        Default: the scenario's robot's, 0 (the segment alone) without a scenario.
+    frames : int, optional
+        Number of frames (>= 2), equally spaced in front-wheel arc length; default
+        :func:`frame_count` of the path's front-wheel length.
+    fps : int
+        Frames per second when played (1 to :data:`MAX_FPS`).
+    dpi : float
+        Pixels per inch of a frame (within :data:`DPI_RANGE`); a frame is ``figsize``
+        times ``dpi`` pixels (640 x 400 by default).
+    figsize : (width, height)
+        Size of a frame in inches.
     title : str, optional
 
     Returns
@@ -80,30 +190,40 @@ def animate_path(
     matplotlib.animation.FuncAnimation
         Its figure is closed (not shown by notebooks); use :func:`to_html` or
         :func:`save_gif`.
+
+    Raises
+    ------
+    ValueError
+        Malformed ``poses``, ``L`` or ``half_width``, or ``frames``, ``fps``, ``dpi`` out of
+        range (:func:`check_animation`).
     """
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import FuncAnimation
+    from matplotlib.patches import Polygon as PolygonPatch
+
+    from .plot import FRONT_LABEL, REAR_LABEL, legend_beside, plot_floor, plot_pose
+
     P = np.asarray(poses, dtype=float)
     if P.ndim != 2 or P.shape[1] != 3 or len(P) < 2 or not np.isfinite(P).all():
         raise ValueError(f"poses must be a finite (n, 3) array with n >= 2, got shape {P.shape}")
     L = check_length(L, "L")
-    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 2:
-        raise ValueError(f"frames must be an integer >= 2, got {frames!r}")
-    if isinstance(interval, bool) or not isinstance(interval, int) or interval < 1:
-        raise ValueError(f"interval must be a positive integer of milliseconds, got {interval!r}")
+    frames, fps, dpi = check_animation(frames, fps, dpi)
+    if half_width is None:
+        half_width = 0.0 if scenario is None else scenario.robot.half_width
+    half_width = finite_number(half_width, "half_width", 0.0)
     A = P[:, :2]
     B = A + L * np.column_stack((np.cos(P[:, 2]), np.sin(P[:, 2])))
+    if frames is None:
+        frames = frame_count(_front_arc_length(P, L)[-1], L)
     idx = _frame_indices(P, L, frames)
 
-    fig, ax = plt.subplots(figsize=figsize, dpi=dpi)
+    fig, ax = plt.subplots(figsize=figsize, dpi=dpi, layout="constrained")
     if scenario is not None:
-        if scenario.bounds is not None:
-            plot_bounds(scenario.bounds, ax)
-        if scenario.robot.half_width > 0:
-            plot_polygons(scenario.enlarged, ax, facecolor="0.9", edgecolor="0.7", label=None)
-        plot_polygons(scenario.outlines, ax)
-        plot_pose(scenario.start, L, ax, color="tab:green")
-        plot_pose(scenario.goal, L, ax, color="tab:red")
+        plot_floor(scenario, ax, enlarged=("0.9", "0.7"), poses=False)
+        plot_pose(scenario.start, L, ax, color="tab:green", label="start")
+        plot_pose(scenario.goal, L, ax, color="tab:red", label="goal")
     points = np.vstack((A, B))
-    lo, hi = points.min(axis=0), points.max(axis=0)
+    lo, hi = points.min(axis=0) - half_width, points.max(axis=0) + half_width
     if scenario is not None and scenario.bounds is not None:
         xmin, ymin, xmax, ymax = scenario.bounds
         lo, hi = np.minimum(lo, (xmin, ymin)), np.maximum(hi, (xmax, ymax))
@@ -115,30 +235,39 @@ def animate_path(
     ax.set_ylabel("y [m]")
     if title:
         ax.set_title(title, fontsize="medium")
-    (rear,) = ax.plot([], [], color="tab:blue", lw=1.5, label="rear A")
-    (front,) = ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label="front wheel B")
-    (body,) = ax.plot([], [], color="k", lw=3.0, solid_capstyle="round")
+    (rear,) = ax.plot([], [], color="tab:blue", lw=1.5, label=REAR_LABEL)
+    (front,) = ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label=FRONT_LABEL)
+    outline = _body(L, half_width)
+    body = PolygonPatch(
+        outline,
+        closed=True,
+        facecolor="0.3",
+        edgecolor="k",
+        alpha=0.45,
+        label=f"robot, half-width {half_width:g} m" if half_width > 0 else "robot A->B",
+        visible=half_width > 0,
+    )
+    ax.add_patch(body)
+    (segment,) = ax.plot([], [], color="k", lw=2.0 if half_width > 0 else 3.0, solid_capstyle="round")
     (wheel,) = ax.plot([], [], "o", color="tab:orange", ms=5)
-    # the legend's "best" place, found once with the whole path drawn, then kept: it does not
-    # jump between frames, and no frame pays for the search (it was most of a frame's time)
-    rear.set_data(A[:, 0], A[:, 1])
-    front.set_data(B[:, 0], B[:, 1])
-    legend = ax.legend(loc="best", fontsize="x-small")
+    legend_beside(ax, fontsize="x-small")
+    # the layout is computed once (the legend beside the floor) and then kept: every frame
+    # has the same axes, and no frame pays for the layout
     fig.canvas.draw()
-    corner = legend.get_window_extent().transformed(ax.transAxes.inverted())
-    legend.remove()
-    ax.legend(loc="lower left", bbox_to_anchor=(corner.x0, corner.y0), borderaxespad=0.0, fontsize="x-small")
+    fig.set_layout_engine("none")
 
     def draw(k: int):
         i = idx[k] + 1
         rear.set_data(A[:i, 0], A[:i, 1])
         front.set_data(B[:i, 0], B[:i, 1])
         j = i - 1
-        body.set_data([A[j, 0], B[j, 0]], [A[j, 1], B[j, 1]])
+        c, s = math.cos(P[j, 2]), math.sin(P[j, 2])
+        body.set_xy(outline @ np.array([[c, s], [-s, c]]) + A[j])
+        segment.set_data([A[j, 0], B[j, 0]], [A[j, 1], B[j, 1]])
         wheel.set_data([B[j, 0]], [B[j, 1]])
-        return rear, front, body, wheel
+        return rear, front, body, segment, wheel
 
-    anim = FuncAnimation(fig, draw, frames=len(idx), interval=interval, blit=False)
+    anim = FuncAnimation(fig, draw, frames=len(idx), interval=1000.0 / fps, blit=False)
     plt.close(fig)
     return anim
 
@@ -147,7 +276,8 @@ def animate_plan(plan, scenario, **kwargs) -> FuncAnimation:
     """:func:`animate_path` of a segplan :class:`~segplan.planning.plan.Plan` on its scenario.
 
     The poses are the plan's unions sampled every centimetre
-    (:func:`segplan.viz.metrics.plan_poses`); ``kwargs`` go to :func:`animate_path`.
+    (:func:`segplan.viz.metrics.plan_poses`); ``kwargs`` go to :func:`animate_path`
+    (``frames``, ``fps``, ``dpi``, ``half_width``, ``figsize``, ``title``).
     """
     unions = list(getattr(plan, "unions", ()))
     if not unions:
@@ -201,6 +331,8 @@ def to_html(anim: FuncAnimation) -> str:
     (Pillow), about a third of the size of matplotlib's RGBA frames, so that a page (and a
     notebook that stores the animation) stays small.
     """
+    from matplotlib.animation import FuncAnimation
+
     if not isinstance(anim, FuncAnimation):
         raise ValueError(f"anim must be a matplotlib FuncAnimation, got {type(anim).__name__}")
     html = anim.to_jshtml(default_mode="loop")
@@ -216,14 +348,16 @@ def to_html(anim: FuncAnimation) -> str:
 def save_gif(anim: FuncAnimation, path, fps: int | None = None) -> Path:
     """Write the animation as a GIF (Pillow) and return the path.
 
-    ``fps`` defaults to the animation's own rate (1000 / interval).
+    ``fps`` (1 to :data:`MAX_FPS`) defaults to the animation's own rate (the ``fps`` of
+    :func:`animate_path`).
     """
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
     if not isinstance(anim, FuncAnimation):
         raise ValueError(f"anim must be a matplotlib FuncAnimation, got {type(anim).__name__}")
     if fps is None:
         fps = max(1, round(1000.0 / anim._interval))
-    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
-        raise ValueError(f"fps must be a positive integer, got {fps!r}")
+    fps = _whole(fps, "fps", 1, MAX_FPS)
     p = Path(path)
     anim.save(p, writer=PillowWriter(fps=fps))
     return p
