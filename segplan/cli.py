@@ -1,19 +1,27 @@
-"""Command line: ``segplan plan SCENARIO [--heuristic a|b|c] [--refine] [--out P.png] [--animate P.gif]``.
+"""Command line: ``segplan plan``, ``segplan draw``, ``segplan scenarios``.
 
-``--poses FILE.csv`` and ``--trajectory FILE.csv`` (with ``--v-max``, ``--a-max``,
-``--a-lat-max``, ``--steer-rate-max``, ``--step``) write the plan sampled and timed
+``segplan plan SCENARIO [--heuristic a|b|c] [--refine] [--out P.png] [--animate P.gif
+[--frames N] [--fps N] [--dpi N]]`` plans a forward-only path of the oriented-segment robot
+(Campoy et al., 1989) on a scenario file (see :mod:`segplan.floor.scenario` for the format),
+prints its cost (LONGD, the front-wheel path length), nodes, expansions and time, and
+optionally draws and animates it (:mod:`segplan.viz.animate`). ``--poses FILE.csv`` and
+``--trajectory FILE.csv`` (with ``--v-max``, ``--a-max``, ``--a-lat-max``,
+``--steer-rate-max``, ``--step``) write the plan sampled and timed
 (:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`).
 
-Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario file or the
-name of a shipped scenario (``segplan plan fig5_example1``), or a ROS ``map_server`` map
-with the poses and the robot: ``segplan plan map.yaml --start X Y THETA_DEG --goal X Y
-THETA_DEG --L 1.2 [--half-width 0.35] [--max-steer-deg 45]`` (:func:`segplan.load_ros_map`).
+SCENARIO is a scenario file or the name of a shipped scenario (``segplan plan
+fig5_example1``), or a ROS ``map_server`` map with the poses and the robot: ``segplan plan
+map.yaml --start X Y THETA_DEG --goal X Y THETA_DEG --L 1.2 [--half-width 0.35]
+[--max-steer-deg 45]`` (:func:`segplan.load_ros_map`).
 
-Plans a forward-only path of the oriented-segment robot (Campoy et al., 1989) on a
-scenario file (see :mod:`segplan.floor.scenario` for the format), prints its cost (LONGD, the
-front-wheel path length), nodes, expansions and time, and optionally draws it. Errors
-(unreadable or invalid file, no path) print one clear message on stderr and exit with a
-non-zero status, without a traceback.
+``segplan draw FLOOR [--out FLOOR.png]`` draws a floor before planning: FLOOR as SCENARIO
+above, a map with or without the poses and the robot. ``segplan scenarios`` lists the
+shipped scenarios, one line each; ``segplan scenarios NAME [--export FILE.json]`` prints one
+or writes it to a new file to edit.
+
+Also ``python -m segplan`` and ``segplan --version``. Errors (unreadable or invalid file or
+option, no path) print one clear line on stderr and exit with a non-zero status, without a
+traceback.
 """
 
 from __future__ import annotations
@@ -26,12 +34,22 @@ import sys
 from pathlib import Path
 
 from . import __version__
+from .floor.maps import Floor
 from .floor.ros_map import load_ros_map
-from .floor.scenario import Robot, Scenario, ScenarioError, load_scenario, make_scenario, shipped_scenarios
+from .floor.scenario import (
+    Robot,
+    Scenario,
+    ScenarioError,
+    load_scenario,
+    make_scenario,
+    save_scenario,
+    shipped_scenarios,
+)
 from .planning.api import plan_scenario
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
 from .planning.trajectory import DEFAULT_STEP
+from .viz import animate
 from .viz.metrics import plan_clearance
 
 __all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
@@ -64,17 +82,22 @@ scenario file (JSON, lengths in metres, angles in degrees):
   an obstacle is any simple polygon (its vertices in order, not closed); a
   non-convex one (an L-shaped rack, a concave bay) is split into convex pieces
   before planning; example: segplan plan l_shaped_rack
+  start from a shipped one (segplan scenarios lists them):
+  segplan scenarios fig5_example1 --export my_floor.json; check it with
+  segplan draw my_floor.json, then segplan plan my_floor.json
 
 output: cost, nodes (x, y in m, theta in deg), expansions, generated nodes, time,
 the planner. With --json, one JSON object on stdout instead (with the planner and
 every option that made the plan). With --out, a figure with the
 obstacles (enlarged by half_width, lighter), the rear path (solid), the front-wheel
-path (dashed) and the robot at intervals.
+path (dashed) and the robot at intervals, the legend beside the floor. With --animate,
+the robot (its body as wide as 2 half_width) driving the plan.
 
 exit status: 0 plan found, 1 no path within the limits, 2 bad input.
 examples:
   segplan plan fig5_example1
   segplan plan fig5_example1 --refine --animate fig5.gif
+  segplan plan fig5_example1 --animate fig5.gif --frames 60 --fps 15 --dpi 120
   segplan plan scenarios/fig5_example1.json
   segplan plan scenarios/fig5_example1.json --heuristic c --out fig5.png
   segplan plan scenarios/turn_around.json --json
@@ -83,15 +106,15 @@ examples:
 
 
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose usage errors use our exit status for bad input."""
+    """ArgumentParser whose usage errors are one line (the option named, a pointer to
+    ``--help``) with our exit status for bad input."""
 
     def error(self, message):  # pragma: no cover - exercised through main()
-        self.print_usage(sys.stderr)
-        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The ``segplan`` argument parser (sub-command ``plan``)."""
+    """The ``segplan`` argument parser (sub-commands ``plan``, ``draw`` and ``scenarios``)."""
     parser = _Parser(
         prog="segplan", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter
     )
@@ -116,7 +139,7 @@ def build_parser() -> argparse.ArgumentParser:
         default="lattice",
         help="lattice (default, beyond the paper): the resolution-complete A* over a lattice of "
         "cubic-union primitives, refined; paper: the paper's search (the options --heuristic, "
-        "--cost and --frames apply to it only)",
+        "--cost and --node-frames apply to it only)",
     )
     p.add_argument(
         "--clearance",
@@ -135,7 +158,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(the paper's comparison baseline); the printed cost is LONGD either way",
     )
     p.add_argument(
-        "--frames",
+        "--node-frames",
         choices=("a", "b"),
         default="b",
         help="reference systems of intermediate nodes (Fig. 4): b one optimal frame per piece "
@@ -152,8 +175,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--animate",
         metavar="PLAN.gif",
-        help="write an animation of the robot driving the plan (GIF, rear and front-wheel traces)",
+        help="write an animation of the robot driving the plan (GIF, or an HTML page: the robot's "
+        "body, rear and front-wheel traces); --frames, --fps and --dpi set it",
     )
+    _add_animation_options(p)
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument(
         "--max-expansions",
@@ -172,14 +197,97 @@ def build_parser() -> argparse.ArgumentParser:
         f"(default {DefaultOptions.time_limit:g})",
     )
     _add_trajectory_options(p)
-    _add_map_options(p)
+    _add_map_options(p, "SCENARIO", "then --start, --goal and --L are required.")
+    _add_draw_command(sub)
+    _add_scenarios_command(sub)
     return parser
+
+
+def _add_draw_command(sub) -> None:
+    """``segplan draw FLOOR [--out FLOOR.png]``: a floor drawn before planning."""
+    d = sub.add_parser(
+        "draw",
+        help="draw a floor (a scenario, a shipped scenario or a ROS map) before planning",
+        description="Draw a floor: its walls, its obstacles (enlarged by the robot's half-width, "
+        "lighter) and the robot at start and goal, to check a floor before planning on it.",
+        epilog="exit status: 0 drawn, 2 bad input.\nexamples:\n  segplan draw fig5_example1\n"
+        "  segplan draw my_floor.json --out my_floor.png\n  segplan draw office.yaml\n"
+        "  segplan draw office.yaml --start 1 2 0 --goal 9 4 90 --L 1.2 --half-width 0.35",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    d.add_argument(
+        "scenario",
+        metavar="FLOOR",
+        help="scenario file (JSON, see segplan plan --help), the name of a shipped scenario "
+        "(segplan scenarios lists them) or a ROS map_server .yaml file",
+    )
+    d.add_argument("--out", metavar="FLOOR.png", help="the image file (default: the floor's name, .png)")
+    _add_map_options(
+        d, "FLOOR", "with --start, --goal and --L it is drawn with the robot, without them bare."
+    )
+
+
+def _add_scenarios_command(sub) -> None:
+    """``segplan scenarios [NAME [--export FILE.json]]``: the shipped floors."""
+    c = sub.add_parser(
+        "scenarios",
+        help="list the shipped scenarios, or print or export one to edit",
+        description="Without NAME, one line per shipped scenario: its name, the floor's size, its "
+        "obstacles and its robot. With NAME, the scenario file (JSON) on stdout, or with --export "
+        "written to a file to edit and plan on.",
+        epilog="exit status: 0 done, 2 bad input.\nexamples:\n  segplan scenarios\n"
+        "  segplan scenarios fig5_example1 --export my_floor.json\n  segplan plan my_floor.json",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    c.add_argument("name", metavar="NAME", nargs="?", help="a shipped scenario")
+    c.add_argument(
+        "--export", metavar="FILE.json", help="write the scenario to this new file (never overwritten)"
+    )
+
+
+def _add_animation_options(p: argparse.ArgumentParser) -> None:
+    """``--frames``, ``--fps``, ``--dpi`` of ``--animate`` (:func:`segplan.viz.animate.animate_path`)."""
+    a = animate
+    p.add_argument(
+        "--frames",
+        type=_frame_count,
+        metavar="N",
+        help=f"frames of the animation (>= 2; default: one every {a.FRAME_STEP:g} L of the front "
+        f"wheel's travel, from {a.MIN_FRAMES} to {a.MAX_FRAMES})",
+    )
+    p.add_argument(
+        "--fps",
+        type=int,
+        metavar="N",
+        help=f"frames per second of the animation (1 to {a.MAX_FPS}; default {a.FPS})",
+    )
+    p.add_argument(
+        "--dpi",
+        type=float,
+        metavar="N",
+        help=f"pixels per inch of the animation ({a.DPI_RANGE[0]} to {a.DPI_RANGE[1]}; default {a.DPI}: "
+        f"{a.FIGSIZE[0] * a.DPI:.0f} x {a.FIGSIZE[1] * a.DPI:.0f} pixels)",
+    )
 
 
 # -- trajectories out (issue 27): --poses, --trajectory and the limits --------------------------
 #: Defaults of the time law's limits on the command line: set by hand (issue 27) for a slow
 #: indoor vehicle of the book's size (L = 1.2 m); not measured. The library has none.
 CLI_LIMITS = {"v_max": 1.0, "a_max": 0.5, "a_lat_max": 0.5, "steer_rate_max_deg": 30.0}
+
+
+def _frame_count(text: str) -> int:
+    """An argparse type: the number of frames of an animation (its range is checked later,
+    with the other animation options)."""
+    if text in ("a", "b"):
+        raise argparse.ArgumentTypeError(
+            f"expected a number of animation frames, got {text!r} (the reference systems of "
+            "intermediate nodes are --node-frames a|b)"
+        )
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
 
 
 def _positive(text: str) -> float:
@@ -280,12 +388,13 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
 MAP_SUFFIXES = (".yaml", ".yml")
 
 
-def _add_map_options(p: argparse.ArgumentParser) -> None:
-    """The options of a plan on a ROS map (SCENARIO a map_server .yaml file): poses and robot."""
+def _add_map_options(p: argparse.ArgumentParser, argument: str, poses: str) -> None:
+    """The options of a ROS map (``argument`` a map_server .yaml file): poses and robot;
+    ``poses`` says when they are needed."""
     g = p.add_argument_group(
         "maps",
-        "SCENARIO may be a ROS map_server map (a .yaml file naming a PGM or PNG image); then "
-        "--start, --goal and --L are required. Unknown cells are obstacles.",
+        f"{argument} may be a ROS map_server map (a .yaml file naming a PGM or PNG image); {poses} "
+        "Unknown cells are obstacles.",
     )
     g.add_argument("--start", nargs=3, type=float, metavar=("X", "Y", "THETA_DEG"), help="start pose")
     g.add_argument("--goal", nargs=3, type=float, metavar=("X", "Y", "THETA_DEG"), help="goal pose")
@@ -297,8 +406,10 @@ def _add_map_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--unknown-free", action="store_true", help="treat the map's unknown cells as free space")
 
 
-def _scenario(args) -> Scenario:
-    """The scenario to plan on: a scenario file, or a ROS map with the poses and robot given.
+def _load(args, *, poses_needed: bool = True) -> Scenario | Floor:
+    """What ``args.scenario`` names: a scenario file, a shipped scenario's name, or a ROS map
+    with the poses and the robot given (a :class:`Scenario`); without them, when
+    ``poses_needed`` is false, the map's :class:`Floor`.
 
     Raises ScenarioError (one line, the file named) for any bad input.
     """
@@ -312,11 +423,15 @@ def _scenario(args) -> Scenario:
                 f"{given[0]} applies to a map (a ROS map_server .yaml file), not a scenario file"
             )
         return load_scenario(args.scenario)
-    missing = [f for f, v in (("--start", args.start), ("--goal", args.goal), ("--L", args.L)) if v is None]
-    if missing:
+    needed = ("--start", "--goal", "--L")
+    missing = [f for f in needed if options[f] is None]
+    robot_given = [f for f in given if f not in ("--unknown-free", *needed)]
+    if missing and (poses_needed or len(missing) < len(needed) or robot_given):
         raise ScenarioError(f"{args.scenario}: a map needs {', '.join(missing)} (poses in m and deg, L in m)")
     try:
         floor = load_ros_map(args.scenario, unknown_is_occupied=not args.unknown_free)
+        if missing:
+            return floor
         robot = Robot(
             args.L,
             0.0 if args.half_width is None else args.half_width,
@@ -326,6 +441,24 @@ def _scenario(args) -> Scenario:
         raise ScenarioError(str(exc)) from None
     start, goal = ((x, y, math.radians(th)) for x, y, th in (args.start, args.goal))
     return make_scenario(robot, start, goal, floor, name=Path(args.scenario).stem, source=args.scenario)
+
+
+def _floor_facts(floor: Scenario | Floor) -> tuple[str, str, str]:
+    """A floor in words: its size, its obstacles, its robot ("-" for a map's floor)."""
+    if floor.bounds is None:
+        size = "no walls"
+    else:
+        xmin, ymin, xmax, ymax = floor.bounds
+        size = f"{xmax - xmin:g} x {ymax - ymin:g} m"
+    n = len(floor.outlines)
+    obstacles = f"{n} obstacle{'s' if n != 1 else ''}"
+    if len(floor.obstacles) != n:
+        obstacles += f" ({len(floor.obstacles)} convex pieces)"
+    if not isinstance(floor, Scenario):
+        return size, obstacles, "-"
+    r = floor.robot
+    robot = f"L {r.L:g} m, half-width {r.half_width:g} m, steering {math.degrees(r.max_steer):.4g} deg"
+    return size, obstacles, robot
 
 
 def _what_the_plan_is(result: Plan, scenario: Scenario) -> dict:
@@ -381,7 +514,7 @@ def _format_plan(result: Plan, name: str) -> str:
         f"expansions  {result.expanded}",
         f"generated   {result.generated}",
         f"time        {1000.0 * result.seconds:.1f} ms",
-        f"search      heuristic {result.heuristic}, cost {result.cost_kind}, frames {result.version}",
+        f"search      heuristic {result.heuristic}, cost {result.cost_kind}, node frames {result.version}",
         f"planner     {result.planner}",
     ]
     r = result.refinement
@@ -394,7 +527,9 @@ def _format_plan(result: Plan, name: str) -> str:
     return "\n".join(lines)
 
 
-def _draw(path: str, scenario, unions, title: str) -> None:
+def _figure(scenario, unions, title: str):
+    """The figure of a floor (a scenario, or a map's floor before a robot is put in it) and
+    a plan's unions: every path in the legend, the legend beside the floor."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -403,33 +538,40 @@ def _draw(path: str, scenario, unions, title: str) -> None:
     from .viz import plot
 
     fig, ax = plt.subplots(figsize=(10, 7))
-    if scenario.bounds is not None:
-        plot.plot_bounds(scenario.bounds, ax)
-    if scenario.robot.half_width > 0:
-        plot.plot_polygons(scenario.enlarged, ax, facecolor="0.9", edgecolor="0.6", label="enlarged obstacle")
-    plot.plot_polygons(scenario.obstacles, ax)
+    plot.plot_floor(scenario, ax, poses=False)
     if unions:
         plot.plot_plan(unions, ax, robots=4)
-    plot.plot_pose(scenario.start, scenario.L, ax, color="tab:green", label="start")
-    plot.plot_pose(scenario.goal, scenario.L, ax, color="tab:red", label="goal")
+    if isinstance(scenario, Scenario):
+        plot.plot_pose(scenario.start, scenario.L, ax, color="tab:green", label="start")
+        plot.plot_pose(scenario.goal, scenario.L, ax, color="tab:red", label="goal")
     ax.set_title(title)
-    # beside the floor, never over a wall or an obstacle
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", borderaxespad=0.0)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    plot.legend_beside(ax)
+    return fig
 
 
-def _animate(path: str, scenario, result: Plan, title: str) -> None:
+def _draw(path: str, scenario, unions, title: str) -> None:
+    """Write :func:`_figure` to ``path``; OSError propagates."""
+    import matplotlib.pyplot as plt
+
+    fig = _figure(scenario, unions, title)
+    try:
+        fig.savefig(path, dpi=120, bbox_inches="tight")
+    finally:
+        plt.close(fig)
+
+
+def _animate(path: str, scenario, result: Plan, title: str, options: dict) -> None:
+    """Write the animation of ``result`` (``options``: :func:`_animation_options`) as a GIF or
+    an HTML page; OSError propagates."""
     import matplotlib
 
     matplotlib.use("Agg")
-    from .viz.animate import animate_plan, save_gif, to_html
 
-    anim = animate_plan(result, scenario, title=title)
+    anim = animate.animate_plan(result, scenario, title=title, **options)
     if Path(path).suffix.lower() == ".html":
-        Path(path).write_text(to_html(anim), encoding="utf-8")
+        Path(path).write_text(animate.to_html(anim), encoding="utf-8")
     else:
-        save_gif(anim, path)
+        animate.save_gif(anim, path)
 
 
 #: The figure formats of --out (matplotlib's, without a display) and the animation formats
@@ -443,15 +585,32 @@ EXIT_BROKEN_PIPE = 141
 
 
 def _check_outputs(args) -> str | None:
-    """The error line for an --out or --animate file of a kind this command cannot write, or
-    None; checked before planning, so a long plan is not lost to a typo."""
+    """The error line for an output this command cannot make, or None; checked before planning,
+    so a long plan is not lost to a typo: an --out or --animate file of a kind it cannot write,
+    an animation option without --animate or out of range."""
+    animation = getattr(args, "animate", None)
     for option, path, kinds, what in (
         ("--out", args.out, FIGURE_SUFFIXES, "a figure"),
-        ("--animate", args.animate, ANIMATION_SUFFIXES, "an animation"),
+        ("--animate", animation, ANIMATION_SUFFIXES, "an animation"),
     ):
         if path and Path(path).suffix.lower() not in kinds:
             return f"{option} {path}: cannot write {what} of this type; use one of {', '.join(kinds)}"
+    if args.command != "plan":
+        return None
+    given = [flag for flag in ("--frames", "--fps", "--dpi") if getattr(args, flag[2:]) is not None]
+    if given and not animation:
+        return f"{given[0]} applies to --animate, and no animation is asked for"
+    try:
+        animate.check_animation(*_animation_options(args).values(), prefix="--")
+    except ValueError as exc:
+        return str(exc)
     return None
+
+
+def _animation_options(args) -> dict:
+    """``frames``, ``fps``, ``dpi`` of :func:`segplan.viz.animate.animate_path` from the command line."""
+    fps = animate.FPS if args.fps is None else args.fps
+    return {"frames": args.frames, "fps": fps, "dpi": animate.DPI if args.dpi is None else args.dpi}
 
 
 def _planner_text(result: Plan, args) -> str:
@@ -485,22 +644,79 @@ def _main(argv: list[str] | None) -> int:
     if args.command is None:
         parser.print_help()
         return EXIT_BAD_INPUT
+    if args.command == "scenarios":
+        return _scenarios(args)
     bad = _check_outputs(args)
     if bad:
         print(f"segplan: error: {bad}", file=sys.stderr)
         return EXIT_BAD_INPUT
     try:
-        scenario = _scenario(args)
+        scenario = _load(args, poses_needed=args.command == "plan")
     except ScenarioError as exc:
         print(f"segplan: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    name = scenario.name or Path(args.scenario).stem
+    name = getattr(scenario, "name", "") or Path(args.scenario).stem
+    if args.command == "draw":
+        return _draw_floor(args, scenario, name)
+    return _plan(args, scenario, name)
+
+
+def _error(message: str) -> int:
+    """Print one error line; the exit status of bad input."""
+    print(f"segplan: error: {message}", file=sys.stderr)
+    return EXIT_BAD_INPUT
+
+
+def _scenarios(args) -> int:
+    """``segplan scenarios``: list the shipped scenarios, or print or export one."""
+    names = shipped_scenarios()
+    if args.name is None:
+        if args.export:
+            return _error("--export needs the NAME of the scenario to write (segplan scenarios lists them)")
+        rows = [("name", "floor", "obstacles", "robot")]
+        rows += [(name, *_floor_facts(load_scenario(name))) for name in names]
+        widths = [max(len(row[i]) for row in rows) for i in range(3)]
+        for row in rows:
+            print("  ".join(cell.ljust(w) for cell, w in zip(row[:3], widths, strict=True)) + "  " + row[3])
+        return 0
+    if args.name not in names:
+        return _error(f"no shipped scenario {args.name!r}; the shipped ones: {', '.join(names)}")
+    scenario = load_scenario(args.name)
+    if not args.export:
+        print(scenario.to_json(), end="")
+        return 0
+    path = Path(args.export)
+    if path.exists():
+        return _error(f"--export {path}: the file exists; choose another name (it is never overwritten)")
+    try:
+        save_scenario(scenario, path)
+    except OSError as exc:
+        return _error(f"cannot write {path}: {exc.strerror or exc}")
+    print(f"scenario    {args.name} written to {path}; edit it, then: segplan plan {path}")
+    return 0
+
+
+def _draw_floor(args, floor: Scenario | Floor, name: str) -> int:
+    """``segplan draw``: the floor's figure, to ``--out`` or ``NAME.png``."""
+    path = args.out or f"{name}.png"
+    size, obstacles, robot = _floor_facts(floor)
+    title = f"{name}: {size}, {obstacles}" + (f"; {robot}" if isinstance(floor, Scenario) else "")
+    try:
+        _draw(path, floor, (), title)
+    except OSError as exc:
+        return _error(f"cannot write {path}: {exc.strerror or exc}")
+    print(f"figure      {path}")
+    return 0
+
+
+def _plan(args, scenario: Scenario, name: str) -> int:
+    """``segplan plan``: plan, print, and write what was asked for."""
     try:
         result = plan_scenario(
             scenario,
             heuristic=args.heuristic,
             cost=args.cost,
-            version=args.frames,
+            version=args.node_frames,
             max_expansions=args.max_expansions,
             time_limit=args.time_limit,
             refine=args.refine,
@@ -552,7 +768,7 @@ def _main(argv: list[str] | None) -> int:
     if args.animate:
         try:
             title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
-            _animate(args.animate, scenario, result, title)
+            _animate(args.animate, scenario, result, title, _animation_options(args))
         except OSError as exc:
             print(f"segplan: error: cannot write {args.animate}: {exc.strerror or exc}", file=sys.stderr)
             return EXIT_BAD_INPUT

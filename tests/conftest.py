@@ -1,5 +1,6 @@
 """Shared test configuration: deterministic hypothesis runs, no deadlines (CI machines vary);
-the refits of the stored data, computed once per session for the modules that read them."""
+the refits of the stored data, computed once per session for the modules that read them; a
+small ROS map for the command line's tests."""
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -42,3 +43,18 @@ def cold_primitive_sets():
     from segplan.planning.lattice.primitives import primitive_set
 
     primitive_set.cache_clear()
+
+
+@pytest.fixture
+def room_map(tmp_path):
+    """A 10 x 6 m room at 0.1 m (map_server PGM and YAML): walls, and an unknown (grey) block
+    at x 4..6 m, y 0..6 m across the room, so only unknown cells made free let a plan through."""
+    import numpy as np
+
+    img = np.full((60, 100), 254, dtype=np.uint8)
+    img[:, :2] = img[:, -2:] = img[:2, :] = img[-2:, :] = 0
+    img[2:-2, 40:60] = 205
+    (tmp_path / "room.pgm").write_bytes(b"P5\n100 60\n255\n" + img.tobytes())
+    path = tmp_path / "room.yaml"
+    path.write_text("image: room.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n")
+    return str(path)

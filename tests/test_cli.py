@@ -46,7 +46,7 @@ def test_plan_refine(capsys):
 
 def test_plan_draws_figure(tmp_path, capsys):
     out = tmp_path / "plan.png"
-    assert main(["plan", SINGLE, "--out", str(out), "--cost", "distance", "--frames", "a"]) == 0
+    assert main(["plan", SINGLE, "--out", str(out), "--cost", "distance", "--node-frames", "a"]) == 0
     assert out.stat().st_size > 1000
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -206,3 +206,116 @@ def test_the_output_says_what_the_plan_is(capsys):
     heads = ("made by", "paths       front wheel", "clearance", "curvature   at most", "steering    jumps")
     for head in heads:
         assert head in out, head
+
+
+def test_the_figure_legend_names_every_path_beside_the_floor(monkeypatch, tmp_path):
+    """--out: the rear path A and the dashed front-wheel path B each have a legend entry, and
+    the legend lies right of the axes, where it cannot cover the floor."""
+    import segplan.cli as cli
+
+    figures = []
+    real = cli._figure
+    monkeypatch.setattr(cli, "_figure", lambda *args: figures.append(real(*args)) or figures[-1])
+    assert main(["plan", "single_obstacle", "--out", str(tmp_path / "plan.png")]) == 0
+    ax = figures[0].axes[0]
+    legend = ax.get_legend()
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert texts == ["enlarged obstacle", "obstacle", "rear path A", "front-wheel path B", "start", "goal"]
+    front = next(line for line in ax.lines if line.get_label() == "front-wheel path B")
+    assert front.get_linestyle() == "--"
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    FigureCanvasAgg(figures[0]).draw()  # the figure was saved and closed: lay it out again
+    assert legend.get_window_extent().x0 >= ax.get_window_extent().x1
+
+
+def test_importing_the_command_loads_no_matplotlib():
+    """The animation options are checked before planning without loading matplotlib, so
+    ``segplan plan`` without a figure starts as fast as before."""
+    code = "import sys, segplan.cli; assert 'matplotlib' not in sys.modules, 'matplotlib loaded'"
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
+
+
+# -- segplan scenarios and segplan draw (issue 27) ------------------------------------------------
+def test_scenarios_lists_every_shipped_floor_in_one_line(capsys):
+    import segplan
+
+    assert main(["scenarios"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].split() == ["name", "floor", "obstacles", "robot"]
+    names = segplan.shipped_scenarios()
+    assert [line.split()[0] for line in lines[1:]] == list(names)
+    rows = dict(zip(names, lines[1:], strict=True))
+    assert (
+        "30 x 20 m  10 obstacles" in rows["fig5_example1"]
+        and "L 1.2 m, half-width 0.35 m" in rows["fig5_example1"]
+    )
+    assert "3 obstacles (6 convex pieces)" in rows["l_shaped_rack"]  # beyond_the_paper/ too
+
+
+def test_scenarios_exports_one_to_edit_and_plan(tmp_path, capsys):
+    import segplan
+
+    mine = tmp_path / "mine.json"
+    assert main(["scenarios", "turn_around", "--export", str(mine)]) == 0
+    assert str(mine) in capsys.readouterr().out
+    shipped, copy = segplan.load_scenario("turn_around"), segplan.load_scenario(mine)
+    assert copy.to_dict() == shipped.to_dict()
+    assert main(["scenarios", "turn_around"]) == 0  # the same file on stdout
+    assert capsys.readouterr().out == mine.read_text()
+    mine.write_text(mine.read_text().replace('"goal": [3.0, 6.5, 180.0]', '"goal": [9.0, 6.5, 90.0]'))
+    assert main(["plan", str(mine), "--json"]) == 0  # edited, and planned on
+    assert json.loads(capsys.readouterr().out)["nodes"][-1] == [9.0, 6.5, 90.0]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["scenarios", "nope"], "no shipped scenario 'nope'; the shipped ones: empty_room,"),
+        (["scenarios", "--export", "x.json"], "--export needs the NAME"),
+        (["scenarios", "turn_around", "--export", "{exists}"], "the file exists"),
+        (["draw", "nope.json"], "nope.json: cannot read"),
+        (["draw", "nope"], "'nope' is neither a file nor a shipped scenario"),
+        (["draw", "turn_around", "--out", "floor.txt"], "--out floor.txt: cannot write a figure"),
+        (["draw", "turn_around", "--L", "1"], "--L applies to a map"),
+        (["draw", "{map}", "--start", "1", "1", "0"], "a map needs --goal, --L"),
+        (["draw", "{map}", "--half-width", "0.3"], "a map needs --start, --goal, --L"),
+    ],
+)
+def test_scenarios_and_draw_errors_are_one_line(tmp_path, capsys, monkeypatch, room_map, argv, message):
+    monkeypatch.chdir(tmp_path)
+    exists = tmp_path / "exists.json"
+    exists.write_text("{}")
+    argv = [a.format(exists=exists, map=room_map) for a in argv]
+    assert main(argv) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith("segplan: error: ") and message in err[0], err
+    assert exists.read_text() == "{}" and not (tmp_path / "x.json").exists()
+    assert not list(tmp_path.glob("*.png")) and not list(tmp_path.glob("*.txt"))
+
+
+def test_draw_a_scenario_a_shipped_name_and_a_map(tmp_path, capsys, monkeypatch, room_map):
+    """FLOOR as plan reads it: a file, a shipped name, a ROS map (bare, or with the robot)."""
+    import segplan.cli as cli
+
+    monkeypatch.chdir(tmp_path)
+    figures = []
+    real = cli._figure
+    monkeypatch.setattr(cli, "_figure", lambda *args: figures.append(args) or real(*args))
+    assert main(["draw", "fig5_example1"]) == 0  # default file: the floor's name
+    assert capsys.readouterr().out == "figure      fig5_example1.png\n"
+    assert main(["draw", str(SINGLE), "--out", "single.pdf"]) == 0
+    assert main(["draw", room_map, "--out", "room.png"]) == 0
+    robot = ["--start", "1", "1", "0", "--goal", "8.5", "4", "90", "--L", "0.8", "--half-width", "0.2"]
+    assert main(["draw", room_map, "--out", "robot.png", *robot]) == 0
+    for name in ("fig5_example1.png", "room.png", "robot.png"):
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (tmp_path / "single.pdf").read_bytes()[:4] == b"%PDF"
+    floors = [args[0] for args in figures]
+    assert [type(f).__name__ for f in floors] == ["Scenario", "Scenario", "Floor", "Scenario"]
+    assert all(args[1] == () for args in figures)  # floors only, nothing planned
+    assert figures[0][2] == (
+        "fig5_example1: 30 x 20 m, 10 obstacles; L 1.2 m, half-width 0.35 m, steering 45 deg"
+    )
+    assert figures[2][2].startswith("room: 10 x 6 m, ") and "half-width" not in figures[2][2]
+    assert floors[3].robot.half_width == 0.2

@@ -32,10 +32,13 @@ OPTION_TESTS = {
     "clearance": "test_clearance_moves_the_plan_away_from_obstacles",
     "heuristic": "test_heuristic_changes_the_search",
     "cost": "test_cost_changes_the_search",
-    "frames": "test_frames_change_the_plan",
+    "node_frames": "test_node_frames_change_the_plan",
     "refine": "test_refine_and_no_refine",
     "out": "test_out_draws_the_plan_found",
     "animate": "test_animate_writes_a_gif",
+    "frames": "test_animation_options_make_the_gif",
+    "fps": "test_animation_options_make_the_gif",
+    "dpi": "test_animation_options_make_the_gif",
     "json": "test_json_output_fields",
     "max_expansions": "test_max_expansions_limits_every_search",
     "time_limit": "test_time_limit_fails_with_reason_time",
@@ -146,13 +149,13 @@ def test_cost_changes_the_search(capsys, spy):
     assert [c["cost"] for c in spy] == ["longd", "distance"]
 
 
-def test_frames_change_the_plan(capsys, spy):
-    _, b = run_json(capsys, "single_obstacle", "--planner", "paper", "--frames", "b")
-    _, a = run_json(capsys, "single_obstacle", "--planner", "paper", "--frames", "a")
+def test_node_frames_change_the_plan(capsys, spy):
+    _, b = run_json(capsys, "single_obstacle", "--planner", "paper", "--node-frames", "b")
+    _, a = run_json(capsys, "single_obstacle", "--planner", "paper", "--node-frames", "a")
     assert (a["version"], b["version"]) == ("a", "b")
     assert a["cost"] != b["cost"] and a["alphas_deg"] != b["alphas_deg"]
     # on Fig. 5 one shared frame (Fig. 4 a) leaves the paper's search without a path
-    status, failed = run_json(capsys, "fig5_example1", "--planner", "paper", "--frames", "a")
+    status, failed = run_json(capsys, "fig5_example1", "--planner", "paper", "--node-frames", "a")
     assert status == EXIT_NO_PATH and failed["found"] is False
     assert [c["version"] for c in spy] == ["b", "a", "a"]
 
@@ -192,6 +195,61 @@ def test_animate_writes_a_gif(tmp_path, capsys):
     assert gif.read_bytes()[:6] == b"GIF89a"
     with Image.open(gif) as im:
         assert im.n_frames > 1
+
+
+def test_animation_options_make_the_gif(tmp_path, capsys):
+    """--frames, --fps and --dpi: the GIF's frame count, delay and width."""
+    from PIL import Image
+
+    from segplan.viz import animate
+
+    sizes = {}
+    for frames, fps, dpi in ((5, 20, 80), (7, 4, 100)):
+        gif = tmp_path / f"plan{frames}.gif"
+        argv = ["plan", "turn_around", "--animate", str(gif), "--frames", str(frames)]
+        assert main([*argv, "--fps", str(fps), "--dpi", str(dpi)]) == 0
+        with Image.open(gif) as im:
+            assert im.n_frames == frames and im.info["duration"] == 1000 / fps
+            sizes[dpi] = im.size
+    assert sizes[80] == (round(animate.FIGSIZE[0] * 80), round(animate.FIGSIZE[1] * 80))
+    assert sizes[100][0] == round(animate.FIGSIZE[0] * 100) >= 600
+    capsys.readouterr()
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--frames", "1"], "--frames must be an integer >= 2, got 1"),
+        (["--fps", "0"], "--fps must be an integer from 1 to 50, got 0"),
+        (["--fps", "60"], "--fps must be an integer from 1 to 50, got 60"),
+        (["--dpi", "5"], "--dpi must lie from 20 to 300, got 5"),
+        (["--dpi", "nan"], "--dpi must be finite"),
+        (["--frames", "x"], "argument --frames: expected a whole number, got 'x'"),
+        (["--frames", "a"], "--node-frames a|b"),
+        (["--fps", "2.5"], "argument --fps: invalid int value"),
+    ],
+)
+def test_bad_animation_options_are_one_line_before_planning(tmp_path, capsys, monkeypatch, args, message):
+    def no_planning(*args, **kwargs):
+        raise AssertionError("planned before refusing the animation options")
+
+    monkeypatch.setattr(cli, "plan_scenario", no_planning)
+    gif = tmp_path / "plan.gif"
+    try:
+        status = main(["plan", "turn_around", "--animate", str(gif), *args])
+    except SystemExit as exit:  # argparse's own errors (not a whole number)
+        status = exit.code
+    assert status == EXIT_BAD_INPUT
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and message in err[0] and "Traceback" not in err[0], err
+    assert not gif.exists()
+
+
+def test_animation_options_need_an_animation(capsys, monkeypatch):
+    monkeypatch.setattr(cli, "plan_scenario", None)  # never reached
+    assert main(["plan", "turn_around", "--fps", "5"]) == EXIT_BAD_INPUT
+    err = capsys.readouterr().err
+    assert err == "segplan: error: --fps applies to --animate, and no animation is asked for\n"
 
 
 def test_json_output_fields(capsys):
@@ -344,21 +402,6 @@ def test_steer_rate_max_sets_the_re_steering_time(capsys, tmp_path):
 
 
 # -- a ROS map as SCENARIO (issue 27) ------------------------------------------------------
-@pytest.fixture
-def room_map(tmp_path):
-    """A 10 x 6 m room at 0.1 m (map_server PGM and YAML): walls, and an unknown (grey) block
-    at x 4..6 m, y 0..6 m across the room, so only unknown cells made free let a plan through."""
-    import numpy as np
-
-    img = np.full((60, 100), 254, dtype=np.uint8)
-    img[:, :2] = img[:, -2:] = img[:2, :] = img[-2:, :] = 0
-    img[2:-2, 40:60] = 205
-    (tmp_path / "room.pgm").write_bytes(b"P5\n100 60\n255\n" + img.tobytes())
-    path = tmp_path / "room.yaml"
-    path.write_text("image: room.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n")
-    return str(path)
-
-
 MAP_POSES = ["--start", "1", "1", "0", "--goal", "8.5", "4", "90"]
 
 
