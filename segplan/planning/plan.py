@@ -115,7 +115,9 @@ class NoPathError(RuntimeError):
     Attributes
     ----------
     reason : str
-        ``"exhausted"`` (every reachable node expanded: e.g. the goal is enclosed),
+        ``"exhausted"`` (every node the search could generate was expanded; the message says
+        what is known beyond that: a goal whose free region the start's does not reach, a
+        start in a dead end that a forward-only robot cannot turn in),
         ``"expansions"`` or ``"time"`` (a limit was reached).
     expanded, generated : int
         Nodes expanded and generated.

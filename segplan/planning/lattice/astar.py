@@ -344,6 +344,16 @@ class LatticeAStar:
         self.heap[:] = heap
 
     # -- the plan ------------------------------------------------------------------------------
+    def reach(self) -> tuple[float, float]:
+        """How far the search got from the start: the largest distance (m) of a state it reached
+        from the start, and the largest turn (radians, at most pi) of such a state's heading from
+        the start's. States generated but not yet expanded count (their unions may be unchecked),
+        so both are upper bounds of where the robot can get."""
+        keys = np.array(list(self.g), dtype=float)
+        distance = self.r * float(np.hypot(keys[:, 0], keys[:, 1]).max())
+        turn = float(np.abs(_ANGLES[keys[:, 2].astype(int)]).max())
+        return distance, turn
+
     def chain(self, key) -> list:
         """``[(parent_key, m), ...]``: the lattice edges from the start to ``key``."""
         out = []

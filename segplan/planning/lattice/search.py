@@ -55,6 +55,7 @@ from .primitives import max_reach, primitive_set
 from .shortcut import shortcut_plan
 
 __all__ = [
+    "DEAD_END_TURN",
     "GOAL_RADIUS",
     "LATTICE_MAX_EXPANSIONS",
     "lattice_options",
@@ -303,7 +304,7 @@ def _lattice_search(
     radius = goal_radius if goal_radius is not None else GOAL_RADIUS[0] * R + GOAL_RADIUS[1] * L
     banned: set = set()
     expanded_total = 0
-    proofs: list = []  # (resolution, "exhausted" or "enclosed", approach states) per try
+    proofs: list = []  # (resolution, "exhausted" or "enclosed", approach states, reach) per try
     for k, r in enumerate(tries):
         search = LatticeAStar(
             scenario,
@@ -333,17 +334,20 @@ def _lattice_search(
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
         expanded_total += expanded
-        proofs.append((r, outcome, search.approach.enclosure_states))
+        proofs.append((r, outcome, search.approach.enclosure_states, search.reach()))
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
             if outcome == "exhausted":
                 what = (
                     "every lattice state reachable from the start was expanded at resolution "
-                    + " and ".join(f"{t:.4g} m" for t, _, _ in proofs)
+                    + " and ".join(f"{p[0]:.4g} m" for p in proofs)
                     + ": no chain of the lattice's unions reaches the goal (not a proof that no "
                     "path exists: one may need turns tighter than the lattice's, e.g. a start or "
                     "a goal facing an obstacle close by)"
                 )
+                dead_end = _dead_end(proofs)
+                if dead_end:
+                    what = f"{dead_end}; {what}"
             elif outcome == "enclosed":
                 what = (
                     f"the goal looks enclosed: only {proofs[-1][2]} states of the lattice laid out "
@@ -368,6 +372,30 @@ def _lattice_search(
                 best,
             )
     raise AssertionError("unreachable")
+
+
+#: The largest turn from the start's heading (radians) of every state an exhausted lattice
+#: reached, at or below which the start is reported as a dead end for a forward-only robot:
+#: it never faced sideways, let alone back the way it came.
+DEAD_END_TURN = 0.5 * math.pi
+
+
+def _dead_end(proofs: list) -> str | None:
+    """What an exhausted lattice says first when no state it reached (at every resolution
+    tried, ``proofs``) turned more than :data:`DEAD_END_TURN` from the start's heading: the
+    robot drives forward only and cannot turn around in the space ahead of its start (a bay
+    walled on three sides, nose in). None otherwise."""
+    distance = max(p[3][0] for p in proofs)
+    turn = max(p[3][1] for p in proofs)
+    if turn > DEAD_END_TURN:
+        return None
+    return (
+        "the start looks like a dead end: the robot drives forward only (this planner has no "
+        "reverse gear) and cannot turn around in the space ahead of it, as far as the lattice "
+        f"shows: every state it reached lies within {distance:.3g} m of the start and faces at most "
+        f"{math.degrees(turn):.0f} deg away from the start's heading; a start facing into a dead "
+        "end (a bay walled on three sides, nose in) needs reversing out"
+    )
 
 
 def _escape(

@@ -14,7 +14,8 @@ in the same cell of a ``L/4`` and 22.5 deg grid) are expanded once (the closed s
 Chains of consecutive turn states are limited (``max_turn_chain``), and the search stops
 after ``max_expansions`` expansions or ``time_limit`` seconds with
 :class:`segplan.NoPathError`, which carries what was explored (the explored node
-closest to the goal); so does an exhausted graph (an enclosed goal).
+closest to the goal); so does an exhausted graph (the node generation found no new
+successor: the graph is sparse, so this says nothing of the floor, and the message says no more).
 """
 
 from __future__ import annotations
@@ -173,7 +174,7 @@ class _Search:
         best = min(range(len(self.poses)), key=lambda k: (self.dist[k], self.g[k]))
         partial = self.make_plan(best, expanded)
         what = {
-            "exhausted": "every reachable node was expanded (is the goal enclosed?)",
+            "exhausted": _exhausted(expanded, len(self.poses)),
             "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
             "time": f"the time limit time_limit={time_limit:g} s was reached",
         }[reason]
@@ -186,3 +187,19 @@ class _Search:
             seconds,
             partial,
         )
+
+
+def _exhausted(expanded: int, generated: int) -> str:
+    """What an exhausted search says: the paper's node generation (direct union, intermediate
+    nodes at an obstacle's vertices, approach and turn states) found no new collision-free
+    successor. It knows nothing of the floor beyond its graph, so it says no more: not that the
+    goal is enclosed, nor that no path exists."""
+    if generated == 1:
+        found = "found no collision-free successor of the start"
+    else:
+        found = f"found no new collision-free successor after {expanded} expansions"
+    return (
+        f"the paper's node generation (the direct union, intermediate nodes at the vertices of the "
+        f"obstacle in its way, approach and turn states) {found}; its graph is sparse, so this is "
+        "not a proof that no path exists (the default planner's lattice searches a denser one)"
+    )

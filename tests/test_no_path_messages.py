@@ -1,0 +1,79 @@
+"""A failure says what happened, and no more than is known.
+
+The paper's search says what its node generation found (it knows nothing of the floor beyond
+its sparse graph, so it never suggests an enclosed goal); the lattice says when the start is a
+dead end for a robot that drives forward only (a bay walled on three sides, nose in).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+import segplan
+from segplan.cli import EXIT_NO_PATH, main
+from segplan.planning.lattice.search import DEAD_END_TURN, _dead_end
+
+#: A 20 x 12 m floor with a bay at its east wall, 3 m wide (2.1 m after the enlargement) and
+#: 7 m deep; the robot (L 1.5 m, half-width 0.45 m, turning radius 1.5 m) starts in it nose in.
+BAY = [[(13, 3.9), (20, 3.9), (20, 4.5), (13, 4.5)], [(13, 7.5), (20, 7.5), (20, 8.1), (13, 8.1)]]
+ROBOT = segplan.Robot(1.5, 0.45, math.radians(45))
+
+
+def _bay(start, goal) -> segplan.Scenario:
+    return segplan.make_scenario(ROBOT, start, goal, BAY, (0, 0, 20, 12), name="bay")
+
+
+NOSE_IN = _bay((16.0, 6.0, 0.0), (3.0, 6.0, math.pi))
+
+
+def test_a_nose_in_start_in_a_bay_is_a_dead_end_for_a_forward_only_robot():
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(NOSE_IN)
+    exc = info.value
+    message = str(exc)
+    assert exc.reason == "exhausted"
+    assert "the start looks like a dead end" in message and "drives forward only" in message
+    assert "no reverse gear" in message and "cannot turn around in the space ahead of it" in message
+    assert "enclosed" not in message
+    assert "not a proof that no path exists" in message  # the lattice's exhaustion is not one
+
+
+def test_the_paper_search_says_what_its_node_generation_found():
+    """After one expansion, with the goal in the open: what the node generation found, not a
+    question about an enclosed goal that nothing established."""
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(NOSE_IN, planner="paper")
+    exc = info.value
+    assert exc.reason == "exhausted" and exc.expanded == exc.generated == 1
+    message = str(exc)
+    assert "the paper's node generation" in message
+    assert "found no collision-free successor of the start" in message and "enclosed" not in message
+    # after more expansions: how many, and still no claim about the floor
+    nose_out_goal = _bay((3.0, 6.0, 0.0), (16.0, 6.0, math.pi))
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(nose_out_goal, planner="paper")
+    exc = info.value
+    assert exc.reason == "exhausted" and exc.expanded > 1
+    assert f"found no new collision-free successor after {exc.expanded} expansions" in str(exc)
+    assert "enclosed" not in str(exc) and "not a proof that no path exists" in str(exc)
+
+
+def test_no_dead_end_where_the_robot_turned():
+    """The note needs every try to have stayed within DEAD_END_TURN of the start's heading."""
+    stayed = [(0.2, "exhausted", 0, (2.0, math.radians(27))), (0.1, "exhausted", 0, (2.2, DEAD_END_TURN))]
+    assert "within 2.2 m of the start" in _dead_end(stayed) and "at most 90 deg" in _dead_end(stayed)
+    turned = [stayed[0], (0.1, "exhausted", 0, (2.2, math.radians(117)))]
+    assert _dead_end(turned) is None
+
+
+def test_the_command_says_it_in_one_line(tmp_path, capsys):
+    path = segplan.save_scenario(NOSE_IN, tmp_path / "bay.json")
+    assert main(["plan", str(path)]) == EXIT_NO_PATH
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith("segplan: no path: ") and "drives forward only" in err[0]
+    assert main(["plan", str(path), "--json"]) == EXIT_NO_PATH
+    data = json.loads(capsys.readouterr().out)
+    assert data["reason"] == "exhausted" and "no reverse gear" in data["message"]
