@@ -140,7 +140,9 @@ class LatticeAStar:
             for m, (di, dj, h1) in enumerate(steps):
                 self.into_steps[h1].append((h0, m, di, dj))
         self.edges = LazyEdges(self.screen_edge, self.check_edge) if edges is None else edges
-        self.guide = Guide(grid, robot, self.goal_l) if guide is None else guide
+        if guide is None:
+            guide = Guide(grid, robot, self.goal_l, lambda k: schedule.guide_box(field, self.L, self.R, k))
+        self.guide = guide
         if approach is None:
             approach = GoalApproach(
                 robot, self.start, self.goal, r, self.prims, self.fine, grid, ws, links, schedule
