@@ -2,7 +2,9 @@
 
 ``--poses FILE.csv`` and ``--trajectory FILE.csv`` (with ``--v-max``, ``--a-max``,
 ``--a-lat-max``, ``--steer-rate-max``, ``--step``) write the plan sampled and timed
-(:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`).
+(:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`); ``--nav-path FILE.yaml``
+writes the timed poses as a ROS ``nav_msgs/Path``-shaped message
+(:meth:`segplan.planning.trajectory.Trajectory.nav_path`, frame ``map``).
 
 Also ``python -m segplan`` and ``segplan --version``. SCENARIO is a scenario file or the
 name of a shipped scenario (``segplan plan fig5_example1``), or a ROS ``map_server`` map
@@ -29,12 +31,13 @@ from . import __version__
 from .floor.ros_map import load_ros_map
 from .floor.scenario import Robot, Scenario, ScenarioError, load_scenario, make_scenario, shipped_scenarios
 from .planning.api import plan_scenario
+from .planning.export import write_nav_path
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
 from .planning.trajectory import DEFAULT_STEP
 from .viz.metrics import plan_clearance
 
-__all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
+__all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "NAV_FRAME", "build_parser", "main"]
 
 EXIT_NO_PATH = 1
 EXIT_BAD_INPUT = 2
@@ -79,6 +82,8 @@ examples:
   segplan plan scenarios/fig5_example1.json --heuristic c --out fig5.png
   segplan plan scenarios/turn_around.json --json
   segplan plan fig5_example1 --poses fig5_poses.csv --trajectory fig5_traj.csv --v-max 1.5
+  segplan plan map.yaml --start 1 1.5 0 --goal 8.5 4.5 -90 --L 1.2 --half-width 0.35 \
+      --trajectory traj.csv --nav-path path.yaml
 """
 
 
@@ -180,6 +185,9 @@ def build_parser() -> argparse.ArgumentParser:
 #: Defaults of the time law's limits on the command line: set by hand (issue 27) for a slow
 #: indoor vehicle of the book's size (L = 1.2 m); not measured. The library has none.
 CLI_LIMITS = {"v_max": 1.0, "a_max": 0.5, "a_lat_max": 0.5, "steer_rate_max_deg": 30.0}
+#: The frame of the poses ``--nav-path`` writes: a map_server map's, and a scenario file's
+#: world coordinates.
+NAV_FRAME = "map"
 
 
 def _positive(text: str) -> float:
@@ -213,6 +221,12 @@ def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
         "Prints the total time and what the jumps cost",
     )
     g.add_argument(
+        "--nav-path",
+        metavar="FILE.yaml",
+        help=f"write the time law's poses as a ROS nav_msgs/Path message, each stamped with its time "
+        f"(frame {NAV_FRAME!r}; YAML for .yaml or .yml, JSON for .json; needs no ROS)",
+    )
+    g.add_argument(
         "--step",
         type=_positive,
         default=DEFAULT_STEP,
@@ -241,8 +255,8 @@ def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
 
 
 def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
-    """Write ``--poses`` and ``--trajectory``; their JSON entries and text lines. OSError and
-    ValueError propagate to :func:`main`."""
+    """Write ``--poses``, ``--trajectory`` and ``--nav-path`` (one time law for both); their JSON
+    entries and text lines. OSError and ValueError propagate to :func:`main`."""
     out: dict = {}
     lines: list[str] = []
     if args.poses:
@@ -250,10 +264,12 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
         samples.to_csv(args.poses)
         out["poses"] = {"file": args.poses, "samples": len(samples), "step": args.step}
         lines.append(f"poses       {args.poses} ({len(samples)} samples, every {args.step:g} m or less)")
+    if not (args.trajectory or args.nav_path):
+        return out, lines
+    law = result.trajectory(
+        args.v_max, args.a_max, args.a_lat_max, math.radians(args.steer_rate_max), step=args.step
+    )
     if args.trajectory:
-        law = result.trajectory(
-            args.v_max, args.a_max, args.a_lat_max, math.radians(args.steer_rate_max), step=args.step
-        )
         law.to_csv(args.trajectory)
         out["trajectory"] = {
             "file": args.trajectory,
@@ -274,6 +290,20 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
             f"  time      {law.total_time:.2f} s from rest to rest, of which {law.jump_time:.2f} s for "
             f"{law.jumps} steering jumps ({law.dwell_time:.2f} s re-steering standing)",
         ]
+    if args.nav_path:
+        message = law.nav_path(NAV_FRAME)
+        write_nav_path(args.nav_path, message)
+        n = len(message["poses"])
+        out["nav_path"] = {
+            "file": args.nav_path,
+            "poses": n,
+            "frame_id": NAV_FRAME,
+            "total_time": law.total_time,
+        }
+        lines.append(
+            f"nav path    {args.nav_path} ({n} poses in frame {NAV_FRAME!r}, stamped by the time law, "
+            f"{law.total_time:.2f} s)"
+        )
     return out, lines
 
 
@@ -436,6 +466,8 @@ def _animate(path: str, scenario, result: Plan, title: str) -> None:
 #: of --animate (a GIF through Pillow, or a self-contained HTML page).
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp")
 ANIMATION_SUFFIXES = (".gif", ".html")
+#: The formats of --nav-path (segplan.planning.export.write_nav_path: YAML, else JSON).
+NAV_PATH_SUFFIXES = (".yaml", ".yml", ".json")
 #: Exit status after Ctrl-C (128 + SIGINT, the shell's convention).
 EXIT_INTERRUPTED = 130
 #: Exit status when the reader of the output went away (128 + SIGPIPE, the shell's convention).
@@ -443,11 +475,12 @@ EXIT_BROKEN_PIPE = 141
 
 
 def _check_outputs(args) -> str | None:
-    """The error line for an --out or --animate file of a kind this command cannot write, or
-    None; checked before planning, so a long plan is not lost to a typo."""
+    """The error line for an --out, --animate or --nav-path file of a kind this command cannot
+    write, or None; checked before planning, so a long plan is not lost to a typo."""
     for option, path, kinds, what in (
         ("--out", args.out, FIGURE_SUFFIXES, "a figure"),
         ("--animate", args.animate, ANIMATION_SUFFIXES, "an animation"),
+        ("--nav-path", args.nav_path, NAV_PATH_SUFFIXES, "a nav_msgs/Path file"),
     ):
         if path and Path(path).suffix.lower() not in kinds:
             return f"{option} {path}: cannot write {what} of this type; use one of {', '.join(kinds)}"

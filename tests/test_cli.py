@@ -121,7 +121,12 @@ def test_console_script_entry_point():
 # -- command-line hygiene (issue 27) ------------------------------------------------------------
 @pytest.mark.parametrize(
     ("option", "name", "kinds"),
-    [("--out", "p.txt", ".png"), ("--animate", "p.mp4", ".gif, .html"), ("--animate", "p.png", ".gif")],
+    [
+        ("--out", "p.txt", ".png"),
+        ("--animate", "p.mp4", ".gif, .html"),
+        ("--animate", "p.png", ".gif"),
+        ("--nav-path", "p.csv", ".yaml, .yml, .json"),
+    ],
 )
 def test_a_wrong_output_type_is_one_line_before_planning(tmp_path, capsys, monkeypatch, option, name, kinds):
     """Before: a traceback and exit 1 (the "no path" code) after planning; --animate x.png wrote
