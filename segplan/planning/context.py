@@ -76,20 +76,23 @@ class PlanningContext:
         The call's ``time_limit``, from the moment the context was made.
     workspace : Workspace
         The scenario's one validity checker, built once per call and shared by the stages
-        (on a large floor its set-up is a large share of the planning time); its counters
-        (``stats``) add up over the stages.
+        (on a large floor its set-up is a large share of the planning time), or the one
+        handed in (:class:`segplan.Planner` keeps one per floor: it must be the scenario's,
+        :func:`workspace_of`); its counters (``stats``) add up over the stages.
     counters : collections.Counter
         What the stages did: ``"<stage>_runs"``, ``"<stage>_plans"``, ``"<stage>_expanded"``
         for the stages ``paper``, ``lattice``, ``refine``.
     """
 
-    def __init__(self, scenario: Scenario, time_limit: float, options=None):
+    def __init__(
+        self, scenario: Scenario, time_limit: float, options=None, workspace: Workspace | None = None
+    ):
         if not isinstance(scenario, Scenario):
             raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
         self.options = options
         self.deadline = Deadline(time_limit)
-        self.workspace = workspace_of(scenario)
+        self.workspace = workspace_of(scenario) if workspace is None else workspace
         self.counters: Counter = Counter()
 
     def link_model(
