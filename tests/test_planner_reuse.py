@@ -105,3 +105,52 @@ def test_bad_input_is_refused_at_the_door():
         planner.plan((2.55, 4.0, 0.0), (8.3, 7, 0))
     assert segplan.Planner(OBSTACLES, ROBOT, BOUNDS).scenario((2.55, 4.0, 0.0), (8.3, 7, 0))
     assert "Planner(2 convex obstacles, L=1" in repr(planner)
+
+
+# -- progress ---------------------------------------------------------------------------------
+def test_progress_watches_every_stage_and_changes_nothing():
+    sc = floor_kinds.kind_floor("large", 0)  # a site: a search of hundreds of expansions
+    events: list = []
+    plan = segplan.plan_scenario(sc, progress=events.append)
+    assert _key(plan) == _key(segplan.plan_scenario(sc))
+    stages = [(e.stage, e.event) for e in events if e.event != "expanded"]
+    assert stages == [
+        ("paper", "start"),
+        ("paper", "done"),
+        ("lattice", "start"),
+        ("lattice", "done"),
+        ("refine", "start"),
+        ("refine", "done"),
+    ]
+    counts = [e.expanded for e in events if e.event == "expanded"]
+    assert counts and all(n % 64 == 0 for n in counts) and counts == sorted(set(counts))
+    assert all(a.seconds <= b.seconds for a, b in zip(events[:-1], events[1:], strict=True))
+    assert all(e.limit == 10.0 for e in events)
+    lattice = next(e for e in events if (e.stage, e.event) == ("lattice", "done"))
+    assert events[-1].cost == plan.cost and lattice.cost >= plan.cost
+    # the paper's planner: its search and its refinement
+    events.clear()
+    paper = segplan.Planner(OBSTACLES, ROBOT, BOUNDS, planner="paper", refine=True)
+    paper.plan((1, 1, 0), (8.3, 7, 0), progress=events.append)
+    assert [(e.stage, e.event) for e in events] == [
+        ("paper", "start"),
+        ("paper", "done"),
+        ("refine", "start"),
+        ("refine", "done"),
+    ]
+
+
+def test_progress_can_stop_a_call_and_must_be_callable():
+    sc = floor_kinds.kind_floor("large", 0)
+
+    class EnoughError(Exception):
+        pass
+
+    def stop(event):
+        if event.event == "expanded":
+            raise EnoughError
+
+    with pytest.raises(EnoughError):
+        segplan.plan_scenario(sc, progress=stop)
+    with pytest.raises(ValueError, match="progress must be callable"):
+        segplan.plan_scenario(sc, progress="bar")

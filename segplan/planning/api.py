@@ -130,6 +130,7 @@ def plan_scenario(
     expander: dict | None = None,
     lattice: dict | None = None,
     options: PaperOptions | DefaultOptions | None = None,
+    progress=None,
 ) -> Plan:
     """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
 
@@ -197,6 +198,11 @@ def plan_scenario(
         :class:`segplan.PaperOptions` runs the paper's search, a
         :class:`segplan.DefaultOptions` the default planner. ``plan_scenario(scenario,
         options=p.options)`` plans again as plan ``p`` was planned.
+    progress : callable, optional
+        Called with a :class:`segplan.planning.context.Progress` (stage, event, seconds,
+        expansions, cost) when a stage starts and ends and, in the lattice search, every 64
+        expansions: for long calls (large floors), e.g. to show a bar. It only watches (the
+        plan does not depend on it); an exception it raises ends the call.
 
     Returns
     -------
@@ -228,7 +234,7 @@ def plan_scenario(
         lattice=lattice,
         options=options,
     )
-    return _run(scenario, options)
+    return _run(scenario, options, progress=progress)
 
 
 def planner_options(
@@ -376,17 +382,24 @@ def _apply(scenario: Scenario, options: Options) -> tuple[Scenario, Options]:
     return scenario, options
 
 
-def _run(scenario: Scenario, options: PaperOptions | DefaultOptions, observer=None, workspace=None) -> Plan:
+def _run(
+    scenario: Scenario, options: PaperOptions | DefaultOptions, observer=None, workspace=None, progress=None
+) -> Plan:
     """Plan with checked ``options`` on ``scenario`` (the module docstring's steps 2 and 3);
-    ``workspace``: the scenario's validity checker if one is kept (:class:`segplan.Planner`)."""
+    ``workspace``: the scenario's validity checker if one is kept (:class:`segplan.Planner`);
+    ``progress``: the call's callback (:class:`segplan.planning.context.Progress`)."""
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be callable (it is given a segplan Progress), got {progress!r}")
     # the off-line work, before the clock starts
     paper_offline(scenario, options if isinstance(options, PaperOptions) else options.paper)
-    ctx = PlanningContext(scenario, options.time_limit, options, workspace)
+    ctx = PlanningContext(scenario, options.time_limit, options, workspace, progress)
     try:
         if isinstance(options, PaperOptions):
             found, links = paper_search(ctx, options, observer)
             if options.refine is not None:
+                ctx.report("refine", "start")
                 found = refine_with(found, links, options.refine, deadline=ctx.deadline)
+                ctx.report("refine", "done", cost=found.cost)
         else:
             found = default_pipeline(ctx, options)
     except NoPathError as exc:

@@ -83,9 +83,10 @@ class Planner:
             source += f" (clearance={self.options.clearance:g} m beyond half_width={self.robot.half_width:g})"
         return self.floor.scenario(start, goal, name=name, source=source)
 
-    def plan(self, start, goal) -> Plan:
+    def plan(self, start, goal, progress=None) -> Plan:
         """The plan from ``start`` to ``goal`` (``(x, y, theta)``, radians): the plan of
-        :func:`segplan.plan_scenario` on :meth:`scenario` with the planner's options.
+        :func:`segplan.plan_scenario` on :meth:`scenario` with the planner's options
+        (``progress``: its callback).
 
         Raises
         ------
@@ -101,7 +102,7 @@ class Planner:
             ws = self._workspace = workspace_of(scenario)
         else:  # the counters describe one call
             ws.reset()
-        plan = _run(scenario, applied, workspace=ws)
+        plan = _run(scenario, applied, workspace=ws, progress=progress)
         return dataclasses.replace(plan, options=self.options)
 
     def __repr__(self) -> str:
