@@ -42,7 +42,7 @@ The house, every dependency pointing down (enforced by the import-linter contrac
                                    ros_map, random_floors
     model/                         pose, union, romberg, cost, frame, frame_exact, derivation, constants
 
-    planning/:  api > default > refine | stages > paper/ | lattice/ > context | plan
+    planning/:  planner > api > default > refine | stages > paper/ | lattice/ > context | plan
                 > links | options > schedule | trajectory
                 > validity | dubins | checks | export
     paper/ (the paper's search):  search > problem | expansion > bisectrix
@@ -75,6 +75,7 @@ from .model.union import Union
 from .planning.api import plan, plan_scenario
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions, RefineOptions
 from .planning.plan import NoPathError, Plan, Refinement
+from .planning.planner import Planner
 from .planning.refine import refine
 from .viz.metrics import PathMetrics, measure_path, measure_scenario_path, plan_clearance, plan_poses
 
@@ -86,7 +87,7 @@ __all__ += ["union_free", "union_in_bounds"]
 __all__ += ["Robot", "Scenario", "ScenarioError", "load_scenario", "make_scenario"]
 __all__ += ["random_world", "save_scenario", "shipped_scenarios"]
 __all__ += ["convex_pieces"]
-__all__ += ["NoPathError", "Plan", "plan", "plan_scenario"]
+__all__ += ["NoPathError", "Plan", "Planner", "plan", "plan_scenario"]
 __all__ += ["longd", "longd_approx"]
 __all__ += ["PathMetrics", "measure_path", "measure_scenario_path", "plan_poses", "plan_clearance"]
 __all__ += ["optimal_alpha", "optimal_alpha_intrinsic"]

@@ -7,7 +7,9 @@ prints its cost (LONGD, the front-wheel path length), nodes, expansions and time
 optionally draws and animates it (:mod:`segplan.viz.animate`). ``--poses FILE.csv`` and
 ``--trajectory FILE.csv`` (with ``--v-max``, ``--a-max``, ``--a-lat-max``,
 ``--steer-rate-max``, ``--step``) write the plan sampled and timed
-(:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`).
+(:meth:`segplan.Plan.poses`, :meth:`segplan.Plan.trajectory`); ``--nav-path FILE.yaml``
+writes the timed poses as a ROS ``nav_msgs/Path``-shaped message
+(:meth:`segplan.planning.trajectory.Trajectory.nav_path`, frame ``map``).
 
 SCENARIO is a scenario file or the name of a shipped scenario (``segplan plan
 fig5_example1``), or a ROS ``map_server`` map with the poses and the robot: ``segplan plan
@@ -46,13 +48,14 @@ from .floor.scenario import (
     shipped_scenarios,
 )
 from .planning.api import plan_scenario
+from .planning.export import write_nav_path
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
 from .planning.trajectory import DEFAULT_STEP
 from .viz import animate
 from .viz.metrics import plan_clearance
 
-__all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "build_parser", "main"]
+__all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "NAV_FRAME", "build_parser", "main"]
 
 EXIT_NO_PATH = 1
 EXIT_BAD_INPUT = 2
@@ -102,6 +105,8 @@ examples:
   segplan plan scenarios/fig5_example1.json --heuristic c --out fig5.png
   segplan plan scenarios/turn_around.json --json
   segplan plan fig5_example1 --poses fig5_poses.csv --trajectory fig5_traj.csv --v-max 1.5
+  segplan plan map.yaml --start 1 1.5 0 --goal 8.5 4.5 -90 --L 1.2 --half-width 0.35 \
+      --trajectory traj.csv --nav-path path.yaml
 """
 
 
@@ -274,6 +279,9 @@ def _add_animation_options(p: argparse.ArgumentParser) -> None:
 #: Defaults of the time law's limits on the command line: set by hand (issue 27) for a slow
 #: indoor vehicle of the book's size (L = 1.2 m); not measured. The library has none.
 CLI_LIMITS = {"v_max": 1.0, "a_max": 0.5, "a_lat_max": 0.5, "steer_rate_max_deg": 30.0}
+#: The frame of the poses ``--nav-path`` writes: a map_server map's, and a scenario file's
+#: world coordinates.
+NAV_FRAME = "map"
 
 
 def _frame_count(text: str) -> int:
@@ -321,6 +329,12 @@ def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
         "Prints the total time and what the jumps cost",
     )
     g.add_argument(
+        "--nav-path",
+        metavar="FILE.yaml",
+        help=f"write the time law's poses as a ROS nav_msgs/Path message, each stamped with its time "
+        f"(frame {NAV_FRAME!r}; YAML for .yaml or .yml, JSON for .json; needs no ROS)",
+    )
+    g.add_argument(
         "--step",
         type=_positive,
         default=DEFAULT_STEP,
@@ -349,8 +363,8 @@ def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
 
 
 def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
-    """Write ``--poses`` and ``--trajectory``; their JSON entries and text lines. OSError and
-    ValueError propagate to :func:`main`."""
+    """Write ``--poses``, ``--trajectory`` and ``--nav-path`` (one time law for both); their JSON
+    entries and text lines. OSError and ValueError propagate to :func:`main`."""
     out: dict = {}
     lines: list[str] = []
     if args.poses:
@@ -358,10 +372,12 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
         samples.to_csv(args.poses)
         out["poses"] = {"file": args.poses, "samples": len(samples), "step": args.step}
         lines.append(f"poses       {args.poses} ({len(samples)} samples, every {args.step:g} m or less)")
+    if not (args.trajectory or args.nav_path):
+        return out, lines
+    law = result.trajectory(
+        args.v_max, args.a_max, args.a_lat_max, math.radians(args.steer_rate_max), step=args.step
+    )
     if args.trajectory:
-        law = result.trajectory(
-            args.v_max, args.a_max, args.a_lat_max, math.radians(args.steer_rate_max), step=args.step
-        )
         law.to_csv(args.trajectory)
         out["trajectory"] = {
             "file": args.trajectory,
@@ -382,6 +398,20 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
             f"  time      {law.total_time:.2f} s from rest to rest, of which {law.jump_time:.2f} s for "
             f"{law.jumps} steering jumps ({law.dwell_time:.2f} s re-steering standing)",
         ]
+    if args.nav_path:
+        message = law.nav_path(NAV_FRAME)
+        write_nav_path(args.nav_path, message)
+        n = len(message["poses"])
+        out["nav_path"] = {
+            "file": args.nav_path,
+            "poses": n,
+            "frame_id": NAV_FRAME,
+            "total_time": law.total_time,
+        }
+        lines.append(
+            f"nav path    {args.nav_path} ({n} poses in frame {NAV_FRAME!r}, stamped by the time law, "
+            f"{law.total_time:.2f} s)"
+        )
     return out, lines
 
 
@@ -527,9 +557,9 @@ def _format_plan(result: Plan, name: str) -> str:
     return "\n".join(lines)
 
 
-def _figure(scenario, unions, title: str):
-    """The figure of a floor (a scenario, or a map's floor before a robot is put in it) and
-    a plan's unions: every path in the legend, the legend beside the floor."""
+def _draw(path: str, scenario, unions, title: str) -> None:
+    """Write the floor and the plan's unions (:func:`segplan.viz.plot.plan_figure`) to ``path``;
+    OSError propagates."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -537,23 +567,7 @@ def _figure(scenario, unions, title: str):
 
     from .viz import plot
 
-    fig, ax = plt.subplots(figsize=(10, 7))
-    plot.plot_floor(scenario, ax, poses=False)
-    if unions:
-        plot.plot_plan(unions, ax, robots=4)
-    if isinstance(scenario, Scenario):
-        plot.plot_pose(scenario.start, scenario.L, ax, color="tab:green", label="start")
-        plot.plot_pose(scenario.goal, scenario.L, ax, color="tab:red", label="goal")
-    ax.set_title(title)
-    plot.legend_beside(ax)
-    return fig
-
-
-def _draw(path: str, scenario, unions, title: str) -> None:
-    """Write :func:`_figure` to ``path``; OSError propagates."""
-    import matplotlib.pyplot as plt
-
-    fig = _figure(scenario, unions, title)
+    fig = plot.plan_figure(scenario, unions, title)
     try:
         fig.savefig(path, dpi=120, bbox_inches="tight")
     finally:
@@ -578,6 +592,8 @@ def _animate(path: str, scenario, result: Plan, title: str, options: dict) -> No
 #: of --animate (a GIF through Pillow, or a self-contained HTML page).
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp")
 ANIMATION_SUFFIXES = (".gif", ".html")
+#: The formats of --nav-path (segplan.planning.export.write_nav_path: YAML, else JSON).
+NAV_PATH_SUFFIXES = (".yaml", ".yml", ".json")
 #: Exit status after Ctrl-C (128 + SIGINT, the shell's convention).
 EXIT_INTERRUPTED = 130
 #: Exit status when the reader of the output went away (128 + SIGPIPE, the shell's convention).
@@ -586,12 +602,13 @@ EXIT_BROKEN_PIPE = 141
 
 def _check_outputs(args) -> str | None:
     """The error line for an output this command cannot make, or None; checked before planning,
-    so a long plan is not lost to a typo: an --out or --animate file of a kind it cannot write,
-    an animation option without --animate or out of range."""
+    so a long plan is not lost to a typo: an --out, --animate or --nav-path file of a kind it
+    cannot write, an animation option without --animate or out of range."""
     animation = getattr(args, "animate", None)
     for option, path, kinds, what in (
         ("--out", args.out, FIGURE_SUFFIXES, "a figure"),
         ("--animate", animation, ANIMATION_SUFFIXES, "an animation"),
+        ("--nav-path", getattr(args, "nav_path", None), NAV_PATH_SUFFIXES, "a nav_msgs/Path file"),
     ):
         if path and Path(path).suffix.lower() not in kinds:
             return f"{option} {path}: cannot write {what} of this type; use one of {', '.join(kinds)}"
@@ -648,13 +665,11 @@ def _main(argv: list[str] | None) -> int:
         return _scenarios(args)
     bad = _check_outputs(args)
     if bad:
-        print(f"segplan: error: {bad}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _error(bad)
     try:
         scenario = _load(args, poses_needed=args.command == "plan")
     except ScenarioError as exc:
-        print(f"segplan: error: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _error(str(exc))
     name = getattr(scenario, "name", "") or Path(args.scenario).stem
     if args.command == "draw":
         return _draw_floor(args, scenario, name)
@@ -736,16 +751,13 @@ def _plan(args, scenario: Scenario, name: str) -> int:
                 print(f"segplan: error: cannot write {args.out}: {err.strerror or err}", file=sys.stderr)
         return EXIT_NO_PATH
     except ValueError as exc:
-        print(f"segplan: error: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _error(str(exc))
     try:
         written, written_lines = _trajectories_out(args, result)
     except OSError as exc:
-        print(f"segplan: error: cannot write {exc.filename}: {exc.strerror or exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _error(f"cannot write {exc.filename}: {exc.strerror or exc}")
     except ValueError as exc:
-        print(f"segplan: error: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _error(str(exc))
     facts = _what_the_plan_is(result, scenario)
     if args.json:
         out = {"scenario": name, "found": True, **result.to_dict(), "plan_facts": facts, **written}
@@ -761,8 +773,7 @@ def _plan(args, scenario: Scenario, name: str) -> int:
                 f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}",
             )
         except OSError as exc:
-            print(f"segplan: error: cannot write {args.out}: {exc.strerror or exc}", file=sys.stderr)
-            return EXIT_BAD_INPUT
+            return _error(f"cannot write {args.out}: {exc.strerror or exc}")
         if not args.json:
             print(f"figure      {args.out}")
     if args.animate:
@@ -770,8 +781,7 @@ def _plan(args, scenario: Scenario, name: str) -> int:
             title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
             _animate(args.animate, scenario, result, title, _animation_options(args))
         except OSError as exc:
-            print(f"segplan: error: cannot write {args.animate}: {exc.strerror or exc}", file=sys.stderr)
-            return EXIT_BAD_INPUT
+            return _error(f"cannot write {args.animate}: {exc.strerror or exc}")
         if not args.json:
             print(f"animation   {args.animate}")
     return 0

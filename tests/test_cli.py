@@ -121,7 +121,12 @@ def test_console_script_entry_point():
 # -- command-line hygiene (issue 27) ------------------------------------------------------------
 @pytest.mark.parametrize(
     ("option", "name", "kinds"),
-    [("--out", "p.txt", ".png"), ("--animate", "p.mp4", ".gif, .html"), ("--animate", "p.png", ".gif")],
+    [
+        ("--out", "p.txt", ".png"),
+        ("--animate", "p.mp4", ".gif, .html"),
+        ("--animate", "p.png", ".gif"),
+        ("--nav-path", "p.csv", ".yaml, .yml, .json"),
+    ],
 )
 def test_a_wrong_output_type_is_one_line_before_planning(tmp_path, capsys, monkeypatch, option, name, kinds):
     """Before: a traceback and exit 1 (the "no path" code) after planning; --animate x.png wrote
@@ -211,11 +216,11 @@ def test_the_output_says_what_the_plan_is(capsys):
 def test_the_figure_legend_names_every_path_beside_the_floor(monkeypatch, tmp_path):
     """--out: the rear path A and the dashed front-wheel path B each have a legend entry, and
     the legend lies right of the axes, where it cannot cover the floor."""
-    import segplan.cli as cli
+    from segplan.viz import plot
 
     figures = []
-    real = cli._figure
-    monkeypatch.setattr(cli, "_figure", lambda *args: figures.append(real(*args)) or figures[-1])
+    real = plot.plan_figure
+    monkeypatch.setattr(plot, "plan_figure", lambda *args: figures.append(real(*args)) or figures[-1])
     assert main(["plan", "single_obstacle", "--out", str(tmp_path / "plan.png")]) == 0
     ax = figures[0].axes[0]
     legend = ax.get_legend()
@@ -296,12 +301,12 @@ def test_scenarios_and_draw_errors_are_one_line(tmp_path, capsys, monkeypatch, r
 
 def test_draw_a_scenario_a_shipped_name_and_a_map(tmp_path, capsys, monkeypatch, room_map):
     """FLOOR as plan reads it: a file, a shipped name, a ROS map (bare, or with the robot)."""
-    import segplan.cli as cli
+    from segplan.viz import plot
 
     monkeypatch.chdir(tmp_path)
     figures = []
-    real = cli._figure
-    monkeypatch.setattr(cli, "_figure", lambda *args: figures.append(args) or real(*args))
+    real = plot.plan_figure
+    monkeypatch.setattr(plot, "plan_figure", lambda *args: figures.append(args) or real(*args))
     assert main(["draw", "fig5_example1"]) == 0  # default file: the floor's name
     assert capsys.readouterr().out == "figure      fig5_example1.png\n"
     assert main(["draw", str(SINGLE), "--out", "single.pdf"]) == 0

@@ -335,6 +335,7 @@ OPTION_TESTS.update(
         "a_max": "test_a_max_caps_the_acceleration",
         "a_lat_max": "test_a_lat_max_caps_the_lateral_acceleration",
         "steer_rate_max": "test_steer_rate_max_sets_the_re_steering_time",
+        "nav_path": "test_nav_path_writes_the_time_laws_poses_stamped",
     }
 )
 
@@ -399,6 +400,31 @@ def test_steer_rate_max_sets_the_re_steering_time(capsys, tmp_path):
     slow, _ = _law(capsys, tmp_path, "--steer-rate-max", "30")
     assert slow["trajectory"]["dwell_time"] == pytest.approx(2 * quick["trajectory"]["dwell_time"], rel=1e-12)
     assert slow["trajectory"]["limits"]["steer_rate_max_deg"] == 30
+
+
+@pytest.mark.parametrize("suffix", [".yaml", ".json"])
+def test_nav_path_writes_the_time_laws_poses_stamped(capsys, tmp_path, suffix):
+    """The file is segplan.planning.export.nav_path of the --trajectory table's poses and times
+    (frame 'map'), as YAML or JSON; without --trajectory the same law stamps it."""
+    import yaml
+
+    from segplan.planning.export import nav_path
+
+    path = tmp_path / f"path{suffix}"
+    data, table = _law(capsys, tmp_path, "--nav-path", str(path), "--v-max", "0.8")
+    message = yaml.safe_load(path.read_text()) if suffix == ".yaml" else json.loads(path.read_text())
+    assert message == nav_path(table["x"], table["y"], table["theta"], table["t"], frame_id="map")
+    assert data["nav_path"] == {
+        "file": str(path), "poses": len(message["poses"]), "frame_id": "map",
+        "total_time": data["trajectory"]["total_time"],
+    }  # fmt: skip
+    last = message["poses"][-1]["header"]["stamp"]
+    assert last["sec"] + 1e-9 * last["nanosec"] == pytest.approx(table["t"][-1], abs=1e-9)
+    alone = tmp_path / f"alone{suffix}"
+    status, only = run_json(capsys, "fig5_example1", "--nav-path", str(alone), "--v-max", "0.8")
+    assert status == 0 and "trajectory" not in only and alone.read_bytes() == path.read_bytes()
+    assert main(["plan", "fig5_example1", "--nav-path", str(alone)]) == 0
+    assert f"nav path    {alone} ({len(message['poses'])} poses in frame 'map'" in capsys.readouterr().out
 
 
 # -- a ROS map as SCENARIO (issue 27) ------------------------------------------------------

@@ -471,3 +471,89 @@ def test_the_guide_solves_any_6_in_few_expansions():
     unguided = dataclasses.replace(SCHEDULE, guide_after=10**9)
     _, outcome, _ = plan_of(astar_of(sc, schedule=unguided), max_expansions=1000)
     assert outcome == "expansions"
+
+
+# -- 5. the guide's window on floors too large for a whole-grid guide --------------------------
+def _grid_of(sc):
+    L, R_ = sc.robot.L, sc.robot.min_turning_radius
+    ws = _workspace(sc)
+    cell = L / 16
+    pad = int(math.ceil(max_reach(L, sc.robot.max_steer, L / 8) / cell)) + 2
+    grid = ClearanceGrid(ws.convex, tuple(sc.start), sc.free_bounds, cell, pad, sc.goal, 4 * L + 4 * R_)
+    gx, gy = grid.to_lattice(np.array([sc.goal[:2]]))[0]
+    return grid, (gx, gy, math.remainder(sc.goal.theta - sc.start.theta, 2 * math.pi))
+
+
+@settings(max_examples=20, deadline=None)
+@given(
+    extra=st.floats(0.0, 6.0),
+    share=st.floats(0.0, 0.5),
+    gap=st.floats(2.0, 9.0),
+)
+def test_the_corridor_is_the_box_of_every_cell_of_a_route_short_enough(extra, share, gap):
+    """Brute force over the field's cells: the box holds exactly the cells (and spans them) whose
+    octile distances from start and goal sum to at most the shortest route's, grown."""
+    from segplan.planning.lattice.clearance import DistanceField
+
+    wall = _rect(9.9, 0.0, 10.1, 12.0 - gap)  # a wall with a gap of ``gap`` at the top
+    sc = _scenario((2.0, 2.0, 0.0), (16.0, 2.0, 0.0), [wall])
+    grid, (gx, gy, _) = _grid_of(sc)
+    field = DistanceField(grid, (gx, gy), 0.25)
+    box = field.corridor((0.0, 0.0), extra, share)
+    total = field.octile_from((0.0, 0.0)) + field.octile_goal
+    best = total.min()
+    ii, jj = np.nonzero(total <= best * (1 + share + 1e-9) + extra)
+    X, Y = field.x0 + ii * field.c, field.y0 + jj * field.c
+    assert box == (X.min(), Y.min(), X.max() + field.c, Y.max() + field.c)
+    # both ends inside; the route over the gap (above the wall's top) inside
+    for x, y in ((0.0, 0.0), (gx, gy)):
+        assert box[0] <= x <= box[2] and box[1] <= y <= box[3]
+    top = 12.0 - gap - sc.start.y  # lattice frame: y shifted by the start
+    assert box[3] >= top
+
+
+def test_the_corridor_is_none_where_the_ends_are_not_joined():
+    from segplan.planning.lattice.clearance import DistanceField
+
+    wall = _rect(9.9, 0.0, 10.1, 12.0)
+    sc = _scenario((2.0, 6.0, 0.0), (16.0, 6.0, 0.0), [wall])
+    grid, (gx, gy, _) = _grid_of(sc)
+    field = DistanceField(grid, (gx, gy), 0.25)
+    assert field.corridor((0.0, 0.0), 5.0) is None
+    assert field.corridor((-50.0, 0.0), 5.0) is None  # off the field
+
+
+def test_a_guide_too_large_for_the_whole_grid_is_built_over_the_window(monkeypatch):
+    """With a state budget below the whole grid's, the guide is built over the corridor's box
+    (grown while the start has no coarse route in it): the same estimates inside the window
+    where the whole grid's route stays inside it, ``inf`` outside it."""
+    import segplan.planning.lattice.guide as guide_module
+    from segplan.planning.lattice.clearance import DistanceField
+
+    sc = _scenario((2.0, 6.0, 0.0), (16.0, 6.0, 0.0))
+    grid, goal_l = _grid_of(sc)
+    field = DistanceField(grid, goal_l[:2], 0.25)
+    whole = Guide(grid, sc.robot, goal_l)
+    assert whole.build()
+    states = whole.field.nx * whole.field.ny * 16
+    asked = []
+
+    def window(scale):  # a slack of 1 m, doubled on request (the schedule's is wider)
+        asked.append(scale)
+        return field.corridor((0.0, 0.0), 1.0 * scale)
+
+    monkeypatch.setattr(guide_module, "MAX_STATES", states // 2)
+    assert Guide(grid, sc.robot, goal_l).build() is False  # no window: no guide, as before
+    windowed = Guide(grid, sc.robot, goal_l, window)
+    assert windowed.build() and asked == [1.0]  # the start has a route in the first window
+    assert SCHEDULE.guide_box(field, 1.0, 1.0, 2.0) == field.corridor((0.0, 0.0), 16.0, 0.2)
+    f = windowed.field
+    assert f.nx * f.ny * 16 <= states // 2 < states
+    box = window(asked[-1])
+    assert f.estimate(0.0, 0.0, 0) < math.inf
+    # a straight run along the room: the window's estimate equals the whole grid's there
+    for x in (0.0, 4.0, 8.0):
+        assert f.estimate(x, 0.0, 0) == pytest.approx(whole.field.estimate(x, 0.0, 0), rel=1e-12)
+    # beyond the window: no estimate
+    if box[3] + 2.0 < 6.0:
+        assert f.estimate(4.0, box[3] + 2.0, 0) == math.inf

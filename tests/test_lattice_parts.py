@@ -186,6 +186,7 @@ def test_the_default_schedule_is_the_one_every_plan_was_made_with():
         "enclosed_expansions": 192,
         "guide_after": 64,
         "guided_weight": 1.2,
+        "guide_window": (4.0, 4.0, 0.1),  # issue 25: only where the whole grid's guide is too large
         "deadline_every": 64,
         "grid_margin": (4.0, 4.0),
         "max_escapes": 16,
@@ -210,6 +211,8 @@ def test_the_default_schedule_is_the_one_every_plan_was_made_with():
         ("improve_gap", -1.0),
         ("grid_margin", (4.0,)),
         ("grid_margin", (4.0, -1.0)),
+        ("guide_window", (4.0, 4.0)),
+        ("guide_window", (4.0, 4.0, -0.1)),
         ("deadline_every", "64"),
     ],
 )

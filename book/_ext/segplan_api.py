@@ -26,8 +26,9 @@ GROUPS: list[tuple[str, str, list[str]]] = [
         "plan and plan_scenario plan (the default planner beyond the paper, or planner='paper': "
         "the paper's search, section \"Results\": intermediate nodes on vertex bisectrices, A* "
         "with f = g + h' for its three h'); a Plan holds the nodes, the unions and LONGD, and "
-        "gives its samples (poses), a timed trajectory, its facts and a file (save, load).",
-        ["plan", "plan_scenario", "Plan", "NoPathError"],
+        "gives its samples (poses), a timed trajectory, its facts and a file (save, load); a "
+        "Planner plans many start and goal pairs on one floor, its off-line work done once.",
+        ["plan", "plan_scenario", "Plan", "NoPathError", "Planner"],
     ),
     (
         "Mobile robot modelling: poses and the robot",

@@ -72,6 +72,7 @@ __all__ = [
     "with_clearance",
     "MIN_LENGTH",
     "OPTIONAL_KEYS",
+    "PreparedFloor",
     "REQUIRED_KEYS",
     "Robot",
     "Scenario",
@@ -80,6 +81,7 @@ __all__ = [
     "load_scenario",
     "loads_scenario",
     "make_scenario",
+    "prepare_floor",
     "save_scenario",
     "scenario_from_dict",
 ]
@@ -268,6 +270,104 @@ def make_scenario(
         or narrower than the robot), polygons (see :func:`segplan.floor.geometry.check_convex_polygon`), or a
         start or goal that collides with an enlarged obstacle or leaves the free bounds.
     """
+    floor = prepare_floor(robot, obstacles, bounds, max_arc=max_arc, source=source)
+    return floor.scenario(start, goal, name=name, description=description, path=path, source=source)
+
+
+@dataclass(frozen=True, eq=False)
+class PreparedFloor:
+    """A floor made ready for one robot: the off-line half of :func:`make_scenario`.
+
+    The paper's "processing of the model of the surroundings ... performed off-line": the
+    polygons checked and split into convex pieces, enlarged by the robot's half-width, the
+    bounds checked. Many scenarios (start and goal pairs) share it
+    (:meth:`scenario`; :class:`segplan.Planner`). Build with :func:`prepare_floor`.
+
+    Attributes
+    ----------
+    robot : Robot
+    bounds : tuple or None
+    floor : segplan.Floor
+        The obstacles as given and their convex pieces.
+    enlarged : tuple of ndarray
+        The pieces enlarged by ``robot.half_width`` (read-only).
+    """
+
+    robot: Robot
+    bounds: tuple[float, float, float, float] | None
+    floor: Floor
+    enlarged: tuple[np.ndarray, ...]
+
+    def scenario(
+        self,
+        start,
+        goal,
+        *,
+        name: str = "",
+        description: str = "",
+        path: Path | None = None,
+        source: str = "<python>",
+    ) -> Scenario:
+        """The :class:`Scenario` of ``start`` and ``goal`` on this floor (radians).
+
+        Raises
+        ------
+        ScenarioError
+            Naming ``source``: a malformed pose, a heading beyond 2 pi, or a start or goal
+            that collides with an enlarged obstacle or leaves the free bounds.
+        """
+        robot = self.robot
+        try:
+            start_p = as_pose(start, "start")
+            goal_p = as_pose(goal, "goal")
+        except ValueError as exc:
+            raise ScenarioError(f"{source}: {exc}") from None
+        for label, pose in (("start", start_p), ("goal", goal_p)):
+            _check_scale(pose[:2], f"{source}: {label}")
+            if abs(pose.theta) > 2.0 * math.pi:
+                raise ScenarioError(
+                    f"{source}: {label} heading theta={pose.theta:g} rad is beyond 2 pi (360 deg): "
+                    f"headings are in radians (theta={pose.theta:g} deg would be "
+                    f"{math.radians(pose.theta):.6g} rad)"
+                )
+        floor = self.floor
+        sc = Scenario(
+            robot, start_p, goal_p, self.bounds, tuple(floor.obstacles), self.enlarged, name, description,
+            path, floor.outlines, floor.outline_of,
+        )  # fmt: skip
+        for label, pose in (("start", start_p), ("goal", goal_p)):
+            conflict = sc.pose_conflict(pose)
+            if conflict == "bounds":
+                raise ScenarioError(
+                    f"{source}: {label} pose {_show(pose)} is out of bounds: its segment of length "
+                    f"L={robot.L} must lie strictly inside the bounds shrunk by half_width, "
+                    f"{list(sc.free_bounds)}"
+                )
+            if conflict is not None:
+                conflict = floor.describe(int(conflict[len("obstacles[") : -1]))  # the obstacle as given
+                raise ScenarioError(
+                    f"{source}: {label} pose {_show(pose)} collides with {conflict} "
+                    f"enlarged by half_width={robot.half_width} (segment of length L={robot.L})"
+                )
+        return sc
+
+
+def prepare_floor(
+    robot: Robot,
+    obstacles: Sequence | Floor = (),
+    bounds: Sequence[float] | None = None,
+    *,
+    max_arc: float = DEFAULT_MAX_ARC,
+    source: str = "<python>",
+) -> PreparedFloor:
+    """The floor half of :func:`make_scenario`, done once for many start and goal pairs
+    (:class:`PreparedFloor`; the same arguments and checks, poses apart).
+
+    Raises
+    ------
+    ScenarioError
+        Naming ``source``: bad robot parameters, bounds or polygons.
+    """
     if not isinstance(robot, Robot):
         raise ScenarioError(f"{source}: robot must be a Robot, got {type(robot).__name__}")
     if not MIN_LENGTH <= robot.L <= WORLD_LIMIT:
@@ -276,19 +376,6 @@ def make_scenario(
         raise ScenarioError(
             f"{source}: half_width={robot.half_width} must be 0 or within [{MIN_LENGTH:g}, {WORLD_LIMIT:g}]"
         )
-    try:
-        start_p = as_pose(start, "start")
-        goal_p = as_pose(goal, "goal")
-    except ValueError as exc:
-        raise ScenarioError(f"{source}: {exc}") from None
-    for label, pose in (("start", start_p), ("goal", goal_p)):
-        _check_scale(pose[:2], f"{source}: {label}")
-        if abs(pose.theta) > 2.0 * math.pi:
-            raise ScenarioError(
-                f"{source}: {label} heading theta={pose.theta:g} rad is beyond 2 pi (360 deg): "
-                f"headings are in radians (theta={pose.theta:g} deg would be "
-                f"{math.radians(pose.theta):.6g} rad)"
-            )
     if bounds is None and isinstance(obstacles, Floor):
         bounds = obstacles.bounds
     if bounds is not None:
@@ -313,30 +400,12 @@ def make_scenario(
             floor = Floor.from_polygons(items, source=source)
         except ValueError as exc:
             raise ScenarioError(str(exc)) from None
-    polys = floor.obstacles
     enlarged = []
-    for p in polys:
+    for p in floor.obstacles:
         e = enlarge_polygon(p, robot.half_width, max_arc)
         e.flags.writeable = False
         enlarged.append(e)
-    sc = Scenario(
-        robot, start_p, goal_p, bounds, tuple(polys), tuple(enlarged), name, description, path,
-        floor.outlines, floor.outline_of,
-    )  # fmt: skip
-    for label, pose in (("start", start_p), ("goal", goal_p)):
-        conflict = sc.pose_conflict(pose)
-        if conflict == "bounds":
-            raise ScenarioError(
-                f"{source}: {label} pose {_show(pose)} is out of bounds: its segment of length L={robot.L} "
-                f"must lie strictly inside the bounds shrunk by half_width, {list(sc.free_bounds)}"
-            )
-        if conflict is not None:
-            conflict = floor.describe(int(conflict[len("obstacles[") : -1]))  # the obstacle as given
-            raise ScenarioError(
-                f"{source}: {label} pose {_show(pose)} collides with {conflict} "
-                f"enlarged by half_width={robot.half_width} (segment of length L={robot.L})"
-            )
-    return sc
+    return PreparedFloor(robot, bounds, floor, tuple(enlarged))
 
 
 def _check_scale(values, where: str) -> None:

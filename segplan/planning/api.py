@@ -47,6 +47,7 @@ __all__ = [
     "plan",
     "plan_scenario",
     "plan_scenario_observed",
+    "options_of",
     "planner_options",
 ]
 
@@ -129,6 +130,7 @@ def plan_scenario(
     expander: dict | None = None,
     lattice: dict | None = None,
     options: PaperOptions | DefaultOptions | None = None,
+    progress=None,
 ) -> Plan:
     """Plan on a validated :class:`segplan.Scenario` (see :func:`plan`).
 
@@ -196,6 +198,11 @@ def plan_scenario(
         :class:`segplan.PaperOptions` runs the paper's search, a
         :class:`segplan.DefaultOptions` the default planner. ``plan_scenario(scenario,
         options=p.options)`` plans again as plan ``p`` was planned.
+    progress : callable, optional
+        Called with a :class:`segplan.planning.context.Progress` (stage, event, seconds,
+        expansions, cost) when a stage starts and ends and, in the lattice search, every 64
+        expansions: for long calls (large floors), e.g. to show a bar. It only watches (the
+        plan does not depend on it); an exception it raises ends the call.
 
     Returns
     -------
@@ -227,7 +234,7 @@ def plan_scenario(
         lattice=lattice,
         options=options,
     )
-    return _run(scenario, options)
+    return _run(scenario, options, progress=progress)
 
 
 def planner_options(
@@ -250,10 +257,49 @@ def planner_options(
 ) -> tuple[Scenario, PaperOptions | DefaultOptions]:
     """The door of :func:`plan_scenario`: its arguments checked once (ValueError naming a
     bad one), as the scenario to plan on (with ``clearance`` applied) and the options object
-    of the planner (:class:`PaperOptions` or :class:`DefaultOptions`; ``options`` itself
-    where given, the other arguments then at their defaults)."""
+    of the planner (:func:`options_of`, then the checks that need the scenario)."""
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
+    checked = options_of(
+        heuristic,
+        planner=planner,
+        refine=refine,
+        clearance=clearance,
+        cost=cost,
+        version=version,
+        ds=ds,
+        alpha_method=alpha_method,
+        max_expansions=max_expansions,
+        time_limit=time_limit,
+        max_turn_chain=max_turn_chain,
+        expander=expander,
+        lattice=lattice,
+        options=options,
+    )
+    return _apply(scenario, checked)
+
+
+def options_of(
+    heuristic: str = "a",
+    *,
+    planner: str = "lattice",
+    refine: bool | dict | None = None,
+    clearance: float = 0.0,
+    cost: str = "longd",
+    version: str = "b",
+    ds: float | None = None,
+    alpha_method: str = "heuristic",
+    max_expansions: int | None = None,
+    time_limit: float = 10.0,
+    max_turn_chain: int = 4,
+    expander: dict | None = None,
+    lattice: dict | None = None,
+    options: PaperOptions | DefaultOptions | None = None,
+) -> PaperOptions | DefaultOptions:
+    """:func:`plan_scenario`'s keyword arguments (without the scenario) checked once, as the
+    options object of the planner: :class:`PaperOptions` or :class:`DefaultOptions`
+    (``options`` itself where given, the other arguments then at their defaults); ValueError
+    naming a bad one."""
     if options is not None:
         if not isinstance(options, PaperOptions | DefaultOptions):
             raise ValueError(
@@ -275,11 +321,11 @@ def planner_options(
             expander=expander,
             lattice=lattice,
         )
-        defaults = inspect.signature(planner_options).parameters
+        defaults = inspect.signature(options_of).parameters
         clash = [name for name, value in given.items() if value != defaults[name].default]
         if clash:
             raise ValueError(f"give either options or {', '.join(clash)}, not both")
-        return _apply(scenario, options)
+        return options
     check_choice(planner, PLANNERS, "planner")
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
     default = planner == "lattice"
@@ -320,7 +366,7 @@ def planner_options(
             time_limit=time_limit,
             clearance=clearance,
         )
-    return _apply(scenario, options)
+    return options
 
 
 Options = PaperOptions | DefaultOptions
@@ -336,16 +382,24 @@ def _apply(scenario: Scenario, options: Options) -> tuple[Scenario, Options]:
     return scenario, options
 
 
-def _run(scenario: Scenario, options: PaperOptions | DefaultOptions, observer=None) -> Plan:
-    """Plan with checked ``options`` on ``scenario`` (the module docstring's steps 2 and 3)."""
+def _run(
+    scenario: Scenario, options: PaperOptions | DefaultOptions, observer=None, workspace=None, progress=None
+) -> Plan:
+    """Plan with checked ``options`` on ``scenario`` (the module docstring's steps 2 and 3);
+    ``workspace``: the scenario's validity checker if one is kept (:class:`segplan.Planner`);
+    ``progress``: the call's callback (:class:`segplan.planning.context.Progress`)."""
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be callable (it is given a segplan Progress), got {progress!r}")
     # the off-line work, before the clock starts
     paper_offline(scenario, options if isinstance(options, PaperOptions) else options.paper)
-    ctx = PlanningContext(scenario, options.time_limit, options)
+    ctx = PlanningContext(scenario, options.time_limit, options, workspace, progress)
     try:
         if isinstance(options, PaperOptions):
             found, links = paper_search(ctx, options, observer)
             if options.refine is not None:
+                ctx.report("refine", "start")
                 found = refine_with(found, links, options.refine, deadline=ctx.deadline)
+                ctx.report("refine", "done", cost=found.cost)
         else:
             found = default_pipeline(ctx, options)
     except NoPathError as exc:

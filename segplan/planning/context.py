@@ -12,12 +12,14 @@ from __future__ import annotations
 
 import time
 from collections import Counter
+from collections.abc import Callable
+from dataclasses import dataclass
 
 from ..floor.scenario import Scenario
 from .links import LinkModel
 from .validity import Workspace
 
-__all__ = ["Deadline", "PlanningContext", "workspace_of"]
+__all__ = ["Deadline", "PlanningContext", "Progress", "workspace_of"]
 
 
 def workspace_of(scenario: Scenario) -> Workspace:
@@ -63,6 +65,36 @@ class Deadline:
         return f"Deadline(limit={self.limit:g} s, left={self.left():.3g} s)"
 
 
+@dataclass(frozen=True)
+class Progress:
+    """What a planning call is doing, as handed to its ``progress`` callback
+    (:func:`segplan.plan_scenario`).
+
+    Attributes
+    ----------
+    stage : str
+        ``"paper"`` (the paper's search), ``"lattice"`` or ``"refine"``.
+    event : str
+        ``"start"``, ``"expanded"`` (the lattice search, every
+        :attr:`segplan.planning.schedule.Schedule.deadline_every` expansions) or ``"done"``.
+    seconds : float
+        Since the call's start.
+    limit : float
+        The call's ``time_limit`` (s).
+    expanded : int
+        States expanded so far by the stage's current search (0 at ``"start"``).
+    cost : float or None
+        At ``"done"``: the LONGD of the stage's plan (None: no plan).
+    """
+
+    stage: str
+    event: str
+    seconds: float
+    limit: float
+    expanded: int = 0
+    cost: float | None = None
+
+
 class PlanningContext:
     """The state of one planning call (module docstring).
 
@@ -76,21 +108,39 @@ class PlanningContext:
         The call's ``time_limit``, from the moment the context was made.
     workspace : Workspace
         The scenario's one validity checker, built once per call and shared by the stages
-        (on a large floor its set-up is a large share of the planning time); its counters
-        (``stats``) add up over the stages.
+        (on a large floor its set-up is a large share of the planning time), or the one
+        handed in (:class:`segplan.Planner` keeps one per floor: it must be the scenario's,
+        :func:`workspace_of`); its counters (``stats``) add up over the stages.
+    progress : callable or None
+        The call's ``progress`` callback (:meth:`report`).
     counters : collections.Counter
         What the stages did: ``"<stage>_runs"``, ``"<stage>_plans"``, ``"<stage>_expanded"``
         for the stages ``paper``, ``lattice``, ``refine``.
     """
 
-    def __init__(self, scenario: Scenario, time_limit: float, options=None):
+    def __init__(
+        self,
+        scenario: Scenario,
+        time_limit: float,
+        options=None,
+        workspace: Workspace | None = None,
+        progress: Callable[[Progress], object] | None = None,
+    ):
         if not isinstance(scenario, Scenario):
             raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
         self.scenario = scenario
         self.options = options
         self.deadline = Deadline(time_limit)
-        self.workspace = workspace_of(scenario)
+        self.workspace = workspace_of(scenario) if workspace is None else workspace
         self.counters: Counter = Counter()
+        self.progress = progress
+
+    def report(self, stage: str, event: str, expanded: int = 0, cost: float | None = None) -> None:
+        """Hand a :class:`Progress` to the call's ``progress`` callback, if any (it only
+        watches: the plan does not depend on it; an exception it raises ends the call)."""
+        if self.progress is not None:
+            d = self.deadline
+            self.progress(Progress(stage, event, d.elapsed(), d.limit, expanded, cost))
 
     def link_model(
         self, alpha_method: str = "heuristic", steer_fallback: bool = True, observer=None

@@ -74,8 +74,11 @@ def default_pipeline(ctx: PlanningContext, options: DefaultOptions) -> Plan:
     if options.refine is None:
         return found[0][0]
     # 3. the refinement of each, the shorter refined plan kept (the first on a tie)
+    ctx.report("refine", "start")
     refined = [refine_with(plan, links, options.refine, deadline=ctx.deadline) for plan, links in found]
-    return min(refined, key=lambda plan: plan.cost)
+    best = min(refined, key=lambda plan: plan.cost)
+    ctx.report("refine", "done", cost=best.cost)
+    return best
 
 
 def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOptions) -> NoPathError:

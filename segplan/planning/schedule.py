@@ -78,6 +78,18 @@ class Schedule:
         estimate needs less weight). Set with the guide in 4f681d4, whose measurement is of the
         guide as a whole (400 random floors: any headings 137 -> 149 of OMPL's 149 solved);
         this value alone not measured.
+    guide_window : (float, float, float)
+        ``(a, b, c)``: where the coarse cost-to-go over the whole grid would exceed
+        :data:`segplan.planning.lattice.guide.MAX_STATES` states (floors of more than about
+        100 x 100 m for ``L`` = 1.5 m), it is built over the box of the cells through which
+        the rear point's shortest route over the free cells
+        (:meth:`segplan.planning.lattice.clearance.DistanceField.corridor`) grows by at most
+        ``a L + b R + c D`` (``D`` that route's length). Measured (issue 25) on the "large"
+        sites of :mod:`segplan.studies.floor_kinds` (111-185 x 75-125 m, ``D`` 30-150 m):
+        without a guide 4 of the first 10 were solved within the 10 s time limit; with the
+        guide over the window all 10 (figures in ``benchmarks/results/floor_kinds_*``); a
+        window of ``(4, 4, 0.1)`` holds every plan found with the whole grid's guide (built
+        there for the measurement, 0.6-2 s a floor) and builds in a fraction of that time.
     deadline_every : int
         Expansions between two looks at the clock (the time limit). Set by hand in 4a98571;
         not measured.
@@ -117,6 +129,7 @@ class Schedule:
     enclosed_expansions: int = 192
     guide_after: int = 64
     guided_weight: float = 1.2
+    guide_window: tuple[float, float, float] = (4.0, 4.0, 0.1)
     deadline_every: int = 64
     grid_margin: tuple[float, float] = (4.0, 4.0)
     max_escapes: int = 16
@@ -128,17 +141,25 @@ class Schedule:
         floats = {"steer_slack": 0.0, "guided_weight": 1.0, "improve_gap": 0.0}
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name == "grid_margin":
-                if not (isinstance(value, tuple) and len(value) == 2):
-                    raise ValueError(f"grid_margin must be a pair (a, b) of numbers >= 0, got {value!r}")
+            if f.name in ("grid_margin", "guide_window"):
+                n = 2 if f.name == "grid_margin" else 3
+                if not (isinstance(value, tuple) and len(value) == n):
+                    what = "a pair (a, b)" if n == 2 else "a triple (a, b, c)"
+                    raise ValueError(f"{f.name} must be {what} of numbers >= 0, got {value!r}")
                 for v in value:
-                    check_option(v, "grid_margin", 0.0, lo_ok=True)
+                    check_option(v, f.name, 0.0, lo_ok=True)
             elif f.name in floats:
                 check_option(value, f.name, floats[f.name], lo_ok=f.name == "guided_weight")
             else:
                 check_option(value, f.name, 0 if f.name == "approach_tries" else 1, integer=True, lo_ok=True)
                 if not isinstance(value, int):
                     raise ValueError(f"{f.name} must be an integer >= 1, got {value!r}")
+
+    def guide_box(self, field, L: float, R: float, scale: float = 1.0):
+        """The window of the coarse cost-to-go (:attr:`guide_window`, its slack times ``scale``)
+        from the lattice's origin, the start: a box of ``field``'s corridor, or None."""
+        a, b, c = self.guide_window
+        return field.corridor((0.0, 0.0), scale * (a * L + b * R), scale * c)
 
     def margin(self, L: float, R: float) -> float:
         """The clearance grid's margin on floors without walls: ``a L + b R`` (:attr:`grid_margin`)."""

@@ -102,6 +102,7 @@ def paper_search(ctx: PlanningContext, options: PaperOptions, observer=None) -> 
             kinds=kinds,
         )
 
+    ctx.report("paper", "start")
     try:
         found = astar(
             problem,
@@ -114,8 +115,10 @@ def paper_search(ctx: PlanningContext, options: PaperOptions, observer=None) -> 
         )
     except NoPathError as exc:
         ctx.count("paper", None, exc.expanded)
+        ctx.report("paper", "done", exc.expanded)
         raise
     ctx.count("paper", found, found.expanded)
+    ctx.report("paper", "done", found.expanded, found.cost)
     return found, links
 
 
@@ -124,6 +127,8 @@ def lattice_stage(
 ) -> tuple[Plan, LinkModel]:
     """The lattice search on the context's floor and workspace, within ``max_expansions``
     and the context's deadline, with ``options``' schedule."""
+    ctx.report("lattice", "start")
+    watch = None if ctx.progress is None else (lambda n: ctx.report("lattice", "expanded", n))
     try:
         found, links = lattice_search(
             ctx.scenario,
@@ -132,10 +137,13 @@ def lattice_stage(
             t0=ctx.deadline.start,
             workspace=ctx.workspace,
             schedule=options.schedule,
+            progress=watch,
             **options.search_options(),
         )
     except NoPathError as exc:
         ctx.count("lattice", None, exc.expanded)
+        ctx.report("lattice", "done", exc.expanded)
         raise
     ctx.count("lattice", found, found.expanded)
+    ctx.report("lattice", "done", found.expanded, found.cost)
     return found, links

@@ -184,6 +184,14 @@ class Workspace:
         # boxes and unit edge normals as Python floats, for the scalar :meth:`pose_free`
         self._edge_lists = [edge_list(c) for c in self.convex]
 
+    def reset(self) -> None:
+        """Forget the counters and the answers kept about unions: a new planning call on the
+        same floor (:class:`segplan.Planner`) counts its own work, and the unions of earlier
+        calls are not asked about again (the answers are kept on union identities)."""
+        self.stats = ExpansionStats()
+        self.collision_stats = CollisionStats()
+        self._facts.clear()
+
     # -- poses -------------------------------------------------------------------------
     def pose_free(self, pose) -> bool:
         """Is the robot's segment at ``pose`` clear of every obstacle and inside the bounds?

@@ -37,6 +37,7 @@ __all__ = [
     "REAR_STYLE",
     "ROBOT_STYLE",
     "legend_beside",
+    "plan_figure",
     "plot_bounds",
     "plot_floor",
     "plot_longd",
@@ -368,6 +369,29 @@ def plot_floor(
         for pose in (scenario.start, scenario.goal):
             plot_pose(pose, scenario.L, ax, color=pose_color)
     return _plane(ax)
+
+
+def plan_figure(
+    floor: Scenario | Floor, unions: Iterable[Union] = (), title: str = "", *, figsize=(10.0, 7.0)
+):
+    """A figure of a floor and a plan on it, to save to a file (the command line's ``--out``).
+
+    The floor (:func:`plot_floor`), the plan's unions if any (:func:`plot_plan`: the rear path
+    A, the dashed front-wheel path B, the robot at intervals), a scenario's start (green) and
+    goal (red), every one in the legend and the legend beside the floor (:func:`legend_beside`).
+    Returns the :class:`matplotlib.figure.Figure`; the caller saves and closes it.
+    """
+    fig, ax = plt.subplots(figsize=figsize)
+    plot_floor(floor, ax, poses=False)
+    unions = list(unions)
+    if unions:
+        plot_plan(unions, ax, robots=4)
+    if isinstance(floor, Scenario):
+        plot_pose(floor.start, floor.L, ax, color="tab:green", label="start")
+        plot_pose(floor.goal, floor.L, ax, color="tab:red", label="goal")
+    ax.set_title(title)
+    legend_beside(ax)
+    return fig
 
 
 # -- the cost --------------------------------------------------------------------------

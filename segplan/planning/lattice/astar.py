@@ -94,6 +94,8 @@ class LatticeAStar:
     edges, approach, guide : optional
         The parts, if not the default ones: :class:`LazyEdges` of this lattice (its
         :meth:`screen_edge` and :meth:`check_edge`), :class:`GoalApproach`, :class:`Guide`.
+    progress : callable, optional
+        Called with the expansions so far at every look at the clock (it only watches).
     """
 
     def __init__(
@@ -113,6 +115,7 @@ class LatticeAStar:
         edges: LazyEdges | None = None,
         approach: GoalApproach | None = None,
         guide: Guide | None = None,
+        progress=None,
     ):
         self.robot = robot = scenario.robot
         self.ws, self.ex, self.grid, self.field = ws, links, grid, field
@@ -122,6 +125,7 @@ class LatticeAStar:
         self.start, self.goal = scenario.start, scenario.goal
         self.weight, self.every, self.goal_radius = weight, analytic_every, goal_radius
         self.banned, self.schedule = banned, schedule
+        self.progress = progress  # called with the expansions at every look at the clock
         ps = primitive_set(robot.L, robot.max_steer, r)
         self.prims = ps.by_heading
         self.frame = LatticeFrame(self.start, r, self.L)
@@ -140,7 +144,9 @@ class LatticeAStar:
             for m, (di, dj, h1) in enumerate(steps):
                 self.into_steps[h1].append((h0, m, di, dj))
         self.edges = LazyEdges(self.screen_edge, self.check_edge) if edges is None else edges
-        self.guide = Guide(grid, robot, self.goal_l) if guide is None else guide
+        if guide is None:
+            guide = Guide(grid, robot, self.goal_l, lambda k: schedule.guide_box(field, self.L, self.R, k))
+        self.guide = guide
         if approach is None:
             approach = GoalApproach(
                 robot, self.start, self.goal, r, self.prims, self.fine, grid, ws, links, schedule
@@ -238,15 +244,20 @@ class LatticeAStar:
         lower = grid.lower_blocked_flat
         stop_at = math.inf  # set when the goal looks enclosed
         h_known: dict = {}
+        reported = 0  # the expansions last handed to progress
         while heap:
             if expanded >= max_expansions:
                 reason = "expansions"
                 break
             if expanded >= stop_at:
                 return ("enclosed", expanded)
-            if expanded % sch.deadline_every == 0 and time.perf_counter() > deadline:
-                reason = "time"
-                break
+            if expanded % sch.deadline_every == 0:
+                if time.perf_counter() > deadline:
+                    reason = "time"
+                    break
+                if self.progress is not None and 0 < expanded != reported:
+                    self.progress(expanded)
+                    reported = expanded
             _, _, key = heapq.heappop(heap)
             if key == GOAL:
                 return ("found", expanded)

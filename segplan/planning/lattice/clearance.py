@@ -226,7 +226,6 @@ class DistanceField:
 
     def __init__(self, grid: ClearanceGrid, goal_xy, coarse: float):
         from scipy.sparse import coo_matrix
-        from scipy.sparse.csgraph import dijkstra
 
         k = max(1, int(round(coarse / grid.cell)))
         self.c = k * grid.cell
@@ -246,12 +245,50 @@ class DistanceField:
             w.append(np.full(int(both.sum()), length * self.c))
         r, c_, ww = np.concatenate(rows), np.concatenate(cols), np.concatenate(w)
         graph = coo_matrix((ww, (r, c_)), shape=(nx * ny, nx * ny)).tocsr()
-        gi, gj = self.cell(goal_xy[0], goal_xy[1])
-        if 0 <= gi < nx and 0 <= gj < ny and free[gi, gj]:
-            dist = dijkstra(graph, directed=False, indices=int(ids[gi, gj]))
-        else:
-            dist = np.zeros(nx * ny)
-        self.table = np.maximum((dist.reshape(nx, ny) - 2.0 * math.sqrt(2.0) * self.c) / 1.0824, 0.0)
+        self._graph, self._free = graph, free
+        # octile distances (m) from the goal's cell (zeros where that cell is not free: no
+        # information)
+        goal = self.octile_from(goal_xy)
+        self._goal_known = goal is not None
+        self.octile_goal = np.zeros((nx, ny)) if goal is None else goal
+        self.table = np.maximum((self.octile_goal - 2.0 * math.sqrt(2.0) * self.c) / 1.0824, 0.0)
+
+    def octile_from(self, xy) -> np.ndarray | None:
+        """Octile distances (m) over the free coarse cells from the cell of ``xy`` (``inf``
+        where not joined); None if that cell is not free."""
+        from scipy.sparse.csgraph import dijkstra
+
+        i, j = self.cell(xy[0], xy[1])
+        if 0 <= i < self.nx and 0 <= j < self.ny and self._free[i, j]:
+            index = i * self.ny + j
+            return dijkstra(self._graph, directed=False, indices=index).reshape(self.nx, self.ny)
+        return None
+
+    def corridor(self, start_xy, extra: float, share: float = 0.0) -> tuple[float, ...] | None:
+        """The box ``(xmin, ymin, xmax, ymax)`` (lattice frame) of the coarse cells through which
+        a route from ``start_xy`` to the goal is at most ``extra`` (m) plus ``share`` times the
+        shortest route longer than the shortest route over the free cells (the sum of the
+        octile distances from both ends).
+
+        None where either end's cell is not free or the two are not joined.
+        """
+        from_start = self.octile_from(start_xy)
+        if from_start is None or not self._goal_known:
+            return None
+        total = from_start + self.octile_goal
+        best = float(total.min())
+        if not math.isfinite(best):
+            return None
+        # the sums along one shortest route differ in their last bits (other summation
+        # orders): a relative 1e-9 keeps every cell of it
+        ii, jj = np.nonzero(total <= best * (1.0 + share + 1e-9) + extra)
+        c = self.c
+        return (
+            self.x0 + float(ii.min()) * c,
+            self.y0 + float(jj.min()) * c,
+            self.x0 + float(ii.max() + 1) * c,
+            self.y0 + float(jj.max() + 1) * c,
+        )
 
     def cell(self, x: float, y: float) -> tuple[int, int]:
         return int(math.floor((x - self.x0) / self.c)), int(math.floor((y - self.y0) / self.c))

@@ -81,6 +81,9 @@ class HeadingField:
         The goal in the lattice frame.
     resolution : float
         Coarse cell (m); a multiple of ``grid.cell``.
+    window : (xmin, ymin, xmax, ymax) or None
+        Build the coarse lattice only over this box (lattice frame; :meth:`Guide.build`):
+        outside it the cost-to-go is ``inf``. None: the whole grid.
 
     Attributes
     ----------
@@ -92,7 +95,7 @@ class HeadingField:
 
     worst: float = 0.0
 
-    def __init__(self, grid, robot, goal, resolution: float):
+    def __init__(self, grid, robot, goal, resolution: float, window=None):
         from scipy.sparse import coo_matrix
         from scipy.sparse.csgraph import dijkstra
 
@@ -108,6 +111,9 @@ class HeadingField:
         I1 = (grid.i0 + grid.nx - m) // q
         J0 = -(-(grid.j0 + m) // q)
         J1 = (grid.j0 + grid.ny - m) // q
+        if window is not None:
+            I0, J0 = max(I0, math.floor(window[0] / rc)), max(J0, math.floor(window[1] / rc))
+            I1, J1 = min(I1, math.ceil(window[2] / rc)), min(J1, math.ceil(window[3] / rc))
         self.I0, self.J0 = I0, J0
         self.nx, self.ny = nx, ny = max(I1 - I0 + 1, 0), max(J1 - J0 + 1, 0)
         n = nx * ny * NH
@@ -194,14 +200,18 @@ class HeadingField:
         return float(best)
 
     @staticmethod
-    def resolution(grid, L: float, cells: int = COARSE_CELLS) -> float | None:
+    def resolution(grid, L: float, cells: int = COARSE_CELLS, window=None) -> float | None:
         """The coarse cell for ``grid`` (``L / cells``), or None if that is not a
-        multiple of the grid's cell or the coarse lattice would exceed :data:`MAX_STATES`."""
+        multiple of the grid's cell or the coarse lattice (over ``window`` if given, a box
+        as in :class:`HeadingField`) would exceed :data:`MAX_STATES`."""
         rc = L / cells
         q = rc / grid.cell
         if abs(q - round(q)) > 1e-9 or round(q) < 1:
             return None
-        if (grid.nx * grid.ny) / (q * q) * NH > MAX_STATES:
+        area = grid.nx * grid.ny * grid.cell**2
+        if window is not None:
+            area = min(area, (window[2] - window[0] + 2 * rc) * (window[3] - window[1] + 2 * rc))
+        if area / (rc * rc) * NH > MAX_STATES:
             return None
         return rc
 
@@ -223,6 +233,12 @@ class Guide:
     robot : segplan.Robot
     goal : (x, y, theta)
         The goal in the lattice frame.
+    window : callable or None
+        Called where the whole grid's coarse lattice would exceed :data:`MAX_STATES`, with a
+        scale of its slack (1, then doubled while the start has no coarse route in it): a box
+        ``(xmin, ymin, xmax, ymax)`` (lattice frame) to build the lattice over instead, or
+        None. The search hands the corridor of its distance field
+        (:meth:`segplan.planning.lattice.clearance.DistanceField.corridor`).
 
     Attributes
     ----------
@@ -230,8 +246,9 @@ class Guide:
         The cost-to-go, once :meth:`build` made it.
     """
 
-    def __init__(self, grid, robot, goal):
+    def __init__(self, grid, robot, goal, window=None):
         self.grid, self.robot, self.goal = grid, robot, goal
+        self.window = window
         self.field: HeadingField | None = None
 
     def raise_bound(self, x: float, y: float, hi: int, bound: float) -> float:
@@ -247,17 +264,40 @@ class Guide:
 
     def build(self) -> bool:
         """Build the coarse cost-to-go (:class:`HeadingField`; again at ``L / FINER_CELLS`` if the
-        start has no coarse route and that lattice turns tighter, :func:`turns_tighter`).
-        False if the grid admits no coarse lattice (:meth:`HeadingField.resolution`)."""
+        start has no coarse route and that lattice turns tighter, :func:`turns_tighter`), over
+        the :attr:`window` where the whole grid's would be too large. False if the grid admits
+        no coarse lattice (:meth:`HeadingField.resolution`)."""
         L = self.robot.L
+        box = None
         rc = HeadingField.resolution(self.grid, L)
+        if rc is None and self.window is not None:  # too large: a window only
+            return self._build_windowed()
         if rc is None:
             return False
-        self.field = HeadingField(self.grid, self.robot, self.goal, rc)
+        self.field = HeadingField(self.grid, self.robot, self.goal, rc, box)
         if self.field.estimate(0.0, 0.0, 0) == math.inf:  # the start (lattice origin) has no route
-            fine = HeadingField.resolution(self.grid, L, FINER_CELLS)
+            fine = HeadingField.resolution(self.grid, L, FINER_CELLS, box)
             if fine is not None and turns_tighter(self.robot, rc, fine):
-                field = HeadingField(self.grid, self.robot, self.goal, fine)
+                field = HeadingField(self.grid, self.robot, self.goal, fine, box)
                 if field.estimate(0.0, 0.0, 0) < math.inf:
                     self.field = field
         return True
+
+    def _build_windowed(self) -> bool:
+        """The coarse cost-to-go over the window (:attr:`window`), grown by doubling its slack
+        while the start has no coarse route in it and the grown window stays within
+        :data:`MAX_STATES` (the largest one built is kept). False if none could be built."""
+        L = self.robot.L
+        scale, tried = 1.0, None
+        while True:
+            box = self.window(scale)
+            if box is None or box == tried:
+                break
+            rc = HeadingField.resolution(self.grid, L, window=box)
+            if rc is None:
+                break
+            self.field = HeadingField(self.grid, self.robot, self.goal, rc, box)
+            if self.field.estimate(0.0, 0.0, 0) < math.inf:
+                break
+            scale, tried = 2.0 * scale, box
+        return self.field is not None

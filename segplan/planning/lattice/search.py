@@ -257,6 +257,7 @@ def _lattice_search(
     t0,
     links: LinkModel,
     schedule=SCHEDULE,
+    progress=None,
 ):
     """:func:`lattice_search` without the escapes (one lattice search, its retry), its
     unions made by ``links`` (on ``links.ws``); the options checked by :func:`lattice_options`."""
@@ -318,6 +319,7 @@ def _lattice_search(
             goal_radius=radius,
             banned=banned,
             schedule=schedule,
+            progress=progress,
         )
         while True:
             outcome, expanded = search.run(max_expansions - expanded_total, deadline)
@@ -407,6 +409,7 @@ def _escape(
     deadline: float,
     t0: float,
     schedule=SCHEDULE,
+    progress=None,
 ) -> Plan:
     """Search again between the inner poses of tight arcs
     (:func:`segplan.planning.lattice.escape.arc_pairs` of ``exc.escapable``), the cheapest
@@ -432,6 +435,7 @@ def _escape(
                 t0=None,
                 links=links,
                 schedule=schedule,
+                progress=progress,
                 **{**options, "retry": False},
             )
         except NoPathError as e:
@@ -460,6 +464,7 @@ def lattice_search(
     workspace=None,
     escapes=True,
     schedule: Schedule = SCHEDULE,
+    progress=None,
 ):
     """:func:`plan_lattice`, also returning the :class:`segplan.planning.links.LinkModel` it used.
 
@@ -474,6 +479,8 @@ def lattice_search(
     ``schedule``: when each mechanism starts and how much it does
     (:class:`segplan.planning.schedule.Schedule`; default
     :data:`segplan.planning.schedule.SCHEDULE`, the one every plan of the package is made with).
+    ``progress``: called with the expansions of the current search every
+    :attr:`~segplan.planning.schedule.Schedule.deadline_every` expansions (it only watches).
     """
     options = lattice_options(
         scenario,
@@ -496,13 +503,14 @@ def lattice_search(
             t0=t0,
             links=links,
             schedule=schedule,
+            progress=progress,
             **options,
         )
     except NoPathError as exc:
         if not (escapes and getattr(exc, "escapable", "")):
             raise
         limit = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
-        plan = _escape(scenario, links, exc, options, limit, t0 + float(time_limit), t0, schedule)
+        plan = _escape(scenario, links, exc, options, limit, t0 + float(time_limit), t0, schedule, progress)
     if escapes:
         plan = improve_with_arcs(scenario, links, plan, t0, t0 + float(time_limit), schedule)
     return plan, links
