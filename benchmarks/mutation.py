@@ -66,10 +66,15 @@ LATTICE = [
     "tests/test_lattice.py",
     "tests/test_lattice_layers.py",
     "tests/test_lattice_pinned.py",
+    "tests/test_no_path_messages.py",  # the dead end an exhausted lattice reports
 ]
 TARGETS = {
     # the planner's search and refinement
-    "planning/paper/search": ["tests/test_search_oracles.py", "tests/test_search.py"],
+    "planning/paper/search": [
+        "tests/test_search_oracles.py",
+        "tests/test_search.py",
+        "tests/test_no_path_messages.py",  # what an exhausted search says
+    ],
     "planning/paper/problem": ["tests/test_search_oracles.py", "tests/test_search.py"],
     "planning/paper/expansion": [
         "tests/test_expansion.py",
