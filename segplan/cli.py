@@ -54,6 +54,7 @@ from .planning.plan import NoPathError, Plan
 from .planning.trajectory import DEFAULT_STEP
 from .viz import animate
 from .viz.metrics import plan_clearance
+from .viz.progress import ProgressLine
 
 __all__ = ["CLI_LIMITS", "EXIT_BAD_INPUT", "EXIT_NO_PATH", "NAV_FRAME", "build_parser", "main"]
 
@@ -185,6 +186,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_animation_options(p)
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--progress", action="store_true", help="show the call's progress on stderr")
     p.add_argument(
         "--max-expansions",
         type=int,
@@ -726,6 +728,7 @@ def _draw_floor(args, floor: Scenario | Floor, name: str) -> int:
 
 def _plan(args, scenario: Scenario, name: str) -> int:
     """``segplan plan``: plan, print, and write what was asked for."""
+    shown = ProgressLine() if args.progress else None
     try:
         result = plan_scenario(
             scenario,
@@ -737,6 +740,7 @@ def _plan(args, scenario: Scenario, name: str) -> int:
             refine=args.refine,
             planner=args.planner,
             clearance=args.clearance,
+            progress=shown,
         )
     except NoPathError as exc:
         print(f"segplan: no path: {exc}", file=sys.stderr)
@@ -752,6 +756,9 @@ def _plan(args, scenario: Scenario, name: str) -> int:
         return EXIT_NO_PATH
     except ValueError as exc:
         return _error(str(exc))
+    finally:
+        if shown is not None:
+            shown.close()
     try:
         written, written_lines = _trajectories_out(args, result)
     except OSError as exc:

@@ -40,6 +40,7 @@ OPTION_TESTS = {
     "fps": "test_animation_options_make_the_gif",
     "dpi": "test_animation_options_make_the_gif",
     "json": "test_json_output_fields",
+    "progress": "test_progress_shows_the_stages_on_stderr_and_changes_nothing",
     "max_expansions": "test_max_expansions_limits_every_search",
     "time_limit": "test_time_limit_fails_with_reason_time",
     # a ROS map as SCENARIO (issue 27)
@@ -270,6 +271,20 @@ def test_json_output_fields(capsys):
     assert main(["plan", "fig5_example1", "--planner", "paper"]) == 0
     text = capsys.readouterr().out
     assert text.startswith("scenario    fig5_example1") and "cost        " in text
+
+
+def test_progress_shows_the_stages_on_stderr_and_changes_nothing(capsys):
+    assert main(["plan", "turn_around", "--json"]) == 0
+    quiet = json.loads(capsys.readouterr().out)
+    assert main(["plan", "turn_around", "--json", "--progress"]) == 0
+    captured = capsys.readouterr()
+    shown = json.loads(captured.out)
+    assert shown["nodes"] == quiet["nodes"] and shown["cost"] == quiet["cost"]
+    lines = captured.err.splitlines()  # not a terminal: plain lines, one per stage's start and end
+    stages = [line.split("  ")[-1].split(":")[0] for line in lines if "started" in line]
+    assert stages == ["paper", "lattice", "refine"] or stages == ["paper", "refine"], lines
+    assert all(line.startswith("segplan: ") and " s of 10 " in line for line in lines)
+    assert f"LONGD {quiet['cost']:.3f} m" in lines[-1]
 
 
 @pytest.mark.parametrize(

@@ -85,3 +85,12 @@ def test_the_first_plan_example_runs(tmp_path, monkeypatch):
     exec(compile(code, "README.md", "exec"), {})
     header = (tmp_path / "trajectory.csv").read_text().splitlines()[0]
     assert header.startswith("t,s,v,a,x,y,theta")
+
+
+def test_the_library_example_runs(tmp_path, monkeypatch):
+    """The README's "Using the library" example, as typed, runs (its files in a temporary folder)."""
+    section = README.split("## Using the library", 1)[1].split("\n## ", 1)[0]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    assert {p.name for p in tmp_path.iterdir()} >= {"law.csv", "law.yaml", "plan.json"}
