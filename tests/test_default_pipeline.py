@@ -189,3 +189,26 @@ def test_the_default_is_never_beaten_by_refining_the_papers_plan(name):
     except segplan.NoPathError:
         return  # nothing to refine
     assert default.cost <= segplan.refine(paper, sc).cost * (1 + 1e-12)
+
+
+def test_a_plan_cut_short_by_the_time_limit_says_so(monkeypatch, tmp_path):
+    """The lattice stopped by the time limit after the paper's search found a plan: that plan
+    (refined) is the answer and Plan.stopped says "time"; a plan made within every limit
+    says None, and so does a saved and loaded one."""
+    import segplan.planning.default as default_module
+    from segplan import NoPathError, load_scenario, plan_scenario
+    from segplan.planning.plan import Plan
+
+    sc = load_scenario("fig6_example2")  # the paper's search finds a plan; the lattice runs after it
+    whole = plan_scenario(sc)
+    assert whole.stopped is None and whole.to_dict()["stopped"] is None
+
+    def timed_out(ctx, options, expansions):
+        raise NoPathError("the lattice ran out of time", "time", 10, 20, 1.0, None)
+
+    monkeypatch.setattr(default_module, "lattice_stage", timed_out)
+    cut = plan_scenario(sc)
+    assert cut.stopped == "time" and cut.to_dict()["stopped"] == "time"
+    assert cut.cost == plan_scenario(sc, planner="paper", refine=True).cost  # the refined paper plan
+    monkeypatch.undo()
+    assert Plan.load(cut.save(tmp_path / "cut.json")).stopped == "time"

@@ -406,7 +406,14 @@ def _run(
         exc.seconds = ctx.deadline.elapsed()
         raise
     planner = "paper" if isinstance(options, PaperOptions) else "lattice"
-    return dataclasses.replace(found, seconds=ctx.deadline.elapsed(), planner=planner, options=options)
+    cut = ctx.counters["stopped_by_time"] or (found.refinement is not None and found.refinement.stopped)
+    return dataclasses.replace(
+        found,
+        seconds=ctx.deadline.elapsed(),
+        planner=planner,
+        options=options,
+        stopped="time" if cut else None,
+    )
 
 
 def plan_scenario_observed(scenario: Scenario, observer, heuristic: str = "a", **options) -> Plan:

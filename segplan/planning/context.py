@@ -115,7 +115,9 @@ class PlanningContext:
         The call's ``progress`` callback (:meth:`report`).
     counters : collections.Counter
         What the stages did: ``"<stage>_runs"``, ``"<stage>_plans"``, ``"<stage>_expanded"``
-        for the stages ``paper``, ``lattice``, ``refine``.
+        for the stages ``paper``, ``lattice``, ``refine``; ``"stopped_by_time"`` where the
+        time limit cut the lattice short after the paper's search found a plan
+        (``Plan.stopped``).
     """
 
     def __init__(

@@ -68,6 +68,8 @@ def default_pipeline(ctx: PlanningContext, options: DefaultOptions) -> Plan:
         except NoPathError as exc:
             if paper is None:
                 raise _named_limits(exc, ctx, options) from None
+            if exc.reason == "time":  # the paper's plan is the best found within the limit
+                ctx.counters["stopped_by_time"] += 1
     # the shorter first (the paper's on a tie): it is the answer without refinement, and the
     # one refined first when time is short
     found.sort(key=lambda pair: pair[0].cost)

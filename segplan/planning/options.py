@@ -386,8 +386,9 @@ class LatticeOptions:
         kw = _fields_of(cls, data, "lattice options")
         if "schedule" in kw:
             schedule = _fields_of(Schedule, kw["schedule"], "schedule")
-            if isinstance(schedule.get("grid_margin"), list):
-                schedule["grid_margin"] = tuple(schedule["grid_margin"])
+            for name in ("grid_margin", "guide_window"):  # JSON lists, the schedule's tuples
+                if isinstance(schedule.get(name), list):
+                    schedule[name] = tuple(schedule[name])
             kw["schedule"] = Schedule(**schedule)
         return cls(**kw)
 

@@ -178,6 +178,10 @@ class Plan:
         alone (e.g. :func:`segplan.planning.lattice.search.plan_lattice`).
     options : PaperOptions or DefaultOptions or None
         Every value that made it (:mod:`segplan.planning.options`); None as ``planner``.
+    stopped : str or None
+        ``"time"`` where the call's ``time_limit`` cut a stage short and the plan is the best
+        found by then (the default planner's lattice search stopped after the paper's search
+        had found a plan, or a refinement stopped: ``refinement.stopped``); None otherwise.
     """
 
     nodes: tuple
@@ -197,6 +201,7 @@ class Plan:
     refinement: Refinement | None = None
     planner: str | None = None
     options: object = field(default=None, compare=False)
+    stopped: str | None = None
 
     def to_dict(self) -> dict:
         """Plain-JSON summary (angles in degrees, like scenario files; ``L`` the robot length of
@@ -218,6 +223,7 @@ class Plan:
             "refinement": None if self.refinement is None else dataclasses.asdict(self.refinement),
             "planner": self.planner,
             "options": None if self.options is None else self.options.to_dict(),
+            "stopped": self.stopped,
             "L": self.unions[0].L if self.unions else None,
         }
 
@@ -463,6 +469,9 @@ def plan_from_record(record: Mapping) -> Plan:
     planner = record.get("planner")
     if planner is not None and not isinstance(planner, str):
         raise ValueError(f"the saved plan's 'planner' must be a string or null, got {planner!r}")
+    stopped = record.get("stopped")
+    if stopped not in (None, "time"):
+        raise ValueError(f"the saved plan's 'stopped' must be 'time' or null, got {stopped!r}")
     return Plan(
         nodes=tuple(nodes),
         unions=unions,
@@ -481,4 +490,5 @@ def plan_from_record(record: Mapping) -> Plan:
         refinement=refinement,
         planner=planner,
         options=None if options is None else options_from_dict(options),
+        stopped=stopped,
     )
