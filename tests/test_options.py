@@ -208,11 +208,11 @@ def test_a_plans_summary_is_plain_json_of_its_fields():
     assert d["alphas_deg"] == [math.degrees(u.alpha) for u in plan.unions] and d["kinds"] == list(plan.kinds)
     for name in ("cost", "search_cost", "expanded", "generated", "seconds", "heuristic", "cost_kind"):
         assert d[name] == getattr(plan, name), name
-    for name in ("version", "collision_checks", "exact_checks", "planner"):
+    for name in ("version", "collision_checks", "exact_checks", "planner", "stopped"):
         assert d[name] == getattr(plan, name), name
     assert plan.refinement is not None and d["refinement"] == dataclasses.asdict(plan.refinement)
     assert d["options"] == plan.options.to_dict() and d["L"] == plan.unions[0].L
-    assert len(d) == 17
+    assert len(d) == 18
 
 
 def test_the_search_limits_are_checked_naming_the_argument():
