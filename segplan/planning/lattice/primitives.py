@@ -99,6 +99,8 @@ FINE_S = np.linspace(0.0, 1.0, 49)
 FINE_T = np.linspace(0.0, 1.0, 25)
 _STEER_ALPHAS = 15
 _PEAK_S = np.linspace(0.0, 1.0, 49)
+#: The ends of :data:`_PEAK_S` (:func:`_peaks`' screen).
+_ENDS = np.array([0, -1])
 
 
 @dataclass(frozen=True)
@@ -299,10 +301,16 @@ def _candidates(h0: int, r: float, R: float):
 _PEAK_BLOCK = 256
 
 
-def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
+def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays of
     one shape, at least 1-d; in blocks of :data:`_PEAK_BLOCK` rows: the same values, less
-    memory traffic)."""
+    memory traffic).
+
+    With ``kmax``: ``inf`` for the unions whose curvature at one of their ends (the first and
+    last of the 49 samples, the same values to the last bit) already exceeds ``kmax``, their
+    other samples not computed; ``peak <= kmax`` is then decided as without ``kmax``, and the
+    least of several peaks is the same wherever it is at most ``kmax``.
+    """
     d, phi0, phi1, alpha = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha))
     )
@@ -311,23 +319,35 @@ def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
         sl = slice(k, k + _PEAK_BLOCK)
         coef = cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
         X, c1, c2, c3 = (np.asarray(v, dtype=float)[..., None] for v in coef)
-        _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S)
-        out[sl] = peak_curvature(fp, fpp)
+        if kmax is None:
+            _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S)
+            out[sl] = peak_curvature(fp, fpp)
+            continue
+        _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S[_ENDS])
+        over = peak_curvature(fp, fpp) > kmax
+        rest = ~over
+        _, fp, fpp = curvature_samples(X[rest], c1[rest], c2[rest], c3[rest], _PEAK_S)
+        block = out[sl]
+        block[over] = math.inf
+        block[rest] = peak_curvature(fp, fpp)
     return out
 
 
 def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) -> np.ndarray:
     """Per union: the optimal frame's alpha if its cubic keeps the steering limit (sampled),
     else the alpha of least sampled peak curvature among ``_STEER_ALPHAS`` if that keeps it,
-    else NaN (vectorised). ``margins``: see :func:`selection_margins`."""
+    else NaN (vectorised). ``margins``: see :func:`selection_margins` (every peak is then
+    computed; without, the unions whose ends already break the limit are not sampled further:
+    :func:`_peaks`)."""
+    screen = kmax if margins is None else None
     a = np.clip(np.asarray(heuristic_alpha(d, phi0, phi1, L), dtype=float), lo + 1e-9, hi - 1e-9)
-    peak = _peaks(d, phi0, phi1, a)
+    peak = _peaks(d, phi0, phi1, a, screen)
     bad = ~(peak <= kmax)
     checked = [peak]
     if bad.any():
         f = (np.arange(1, _STEER_ALPHAS + 1) / (_STEER_ALPHAS + 1))[None, :]
         grid = lo[bad, None] + (hi[bad] - lo[bad])[:, None] * f
-        pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid)
+        pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid, screen)
         k = np.argmin(pk, axis=1)
         best = grid[np.arange(len(k)), k]
         least = pk[np.arange(len(k)), k]
