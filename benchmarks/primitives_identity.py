@@ -114,30 +114,24 @@ def sets_of(data) -> list[str]:
 
 
 def differences(new, old) -> tuple[list[str], dict[str, float], int]:
-    """Sets whose integers differ, the largest relative difference per float field (of those
-    in ``old``; angles relative to 1 radian at least), and the number of sets equal bit for bit."""
+    """Sets whose integers or shapes differ, the largest relative difference per float field
+    of the others (the fields in ``old``; angles relative to 1 radian at least), and the
+    number of sets equal bit for bit."""
     present = [f for f in (*FIELDS, "points") if any(k.endswith(f"/{f}") for k in old)]
     bad, worst, same = [], dict.fromkeys(present, 0.0), 0
     for s in sets_of(old):
-        if any(new[f"{s}/{f}"].shape != old[f"{s}/{f}"].shape for f in INTEGERS) or any(
-            not np.array_equal(new[f"{s}/{f}"], old[f"{s}/{f}"]) for f in INTEGERS
+        pairs = [(new[f"{s}/{f}"], old[f"{s}/{f}"]) for f in present]
+        if any(a.shape != b.shape for a, b in pairs) or any(
+            not np.array_equal(a, b) for f, (a, b) in zip(present, pairs, strict=True) if f in INTEGERS
         ):
             bad.append(s)
             continue
-        equal = True
-        for f in present:
-            if f in INTEGERS:
-                continue
-            a, b = new[f"{s}/{f}"], old[f"{s}/{f}"]
-            if a.shape != b.shape:
-                bad.append(s)
-                break
-            equal &= bool(np.array_equal(a, b))
+        for f, (a, b) in zip(present, pairs, strict=True):
             scale = np.maximum(np.abs(b), 1.0 if f in ("alpha", "phi0", "phi1") else 0.0)
             with np.errstate(invalid="ignore", divide="ignore"):
                 rel = np.where(a == b, 0.0, np.abs(a - b) / scale)
             worst[f] = max(worst[f], float(rel.max(initial=0.0)))
-        same += equal
+        same += all(np.array_equal(a, b) for a, b in pairs)
     return bad, worst, same
 
 

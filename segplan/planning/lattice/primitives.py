@@ -99,8 +99,8 @@ FINE_S = np.linspace(0.0, 1.0, 49)
 FINE_T = np.linspace(0.0, 1.0, 25)
 _STEER_ALPHAS = 15
 _PEAK_S = np.linspace(0.0, 1.0, 49)
-#: The ends of :data:`_PEAK_S` (:func:`_peaks`' screen).
-_ENDS = np.array([0, -1])
+#: The ends of :data:`_PEAK_S` (:func:`_peaks`' screen), one row each.
+_ENDS_S = _PEAK_S[[0, -1], None]
 
 
 @dataclass(frozen=True)
@@ -298,13 +298,13 @@ def _candidates(h0: int, r: float, R: float):
 
 
 #: Unions per block of :func:`_peaks` (its temporaries stay in the CPU's caches).
-_PEAK_BLOCK = 256
+_PEAK_BLOCK = 4096
 
 
 def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
-    """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays of
-    one shape, at least 1-d; in blocks of :data:`_PEAK_BLOCK` rows: the same values, less
-    memory traffic).
+    """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays
+    that broadcast to one shape; in blocks of :data:`_PEAK_BLOCK` unions: the same values,
+    less memory traffic).
 
     With ``kmax``: ``inf`` for the unions whose curvature at one of their ends (the first and
     last of the 49 samples, the same values to the last bit) already exceeds ``kmax``, their
@@ -314,23 +314,26 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     d, phi0, phi1, alpha = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha))
     )
-    out = np.empty(d.shape)
-    for k in range(0, len(d), _PEAK_BLOCK):
+    shape = d.shape
+    d, phi0, phi1, alpha = (v.ravel() for v in (d, phi0, phi1, alpha))
+    out = np.empty(d.size)
+    for k in range(0, d.size, _PEAK_BLOCK):
         sl = slice(k, k + _PEAK_BLOCK)
-        coef = cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
-        X, c1, c2, c3 = (np.asarray(v, dtype=float)[..., None] for v in coef)
-        if kmax is None:
-            _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S)
-            out[sl] = peak_curvature(fp, fpp)
-            continue
-        _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S[_ENDS])
-        over = peak_curvature(fp, fpp) > kmax
-        rest = ~over
-        _, fp, fpp = curvature_samples(X[rest], c1[rest], c2[rest], c3[rest], _PEAK_S)
+        X, c1, c2, c3 = (
+            np.asarray(v, dtype=float) for v in cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
+        )
         block = out[sl]
-        block[over] = math.inf
+        if kmax is not None:
+            _, fp, fpp = curvature_samples(X, c1, c2, c3, _ENDS_S)  # the ends, one row each
+            over = peak_curvature(fp, fpp, axis=0) > kmax
+            block[over] = math.inf
+            rest = ~over
+            X, c1, c2, c3 = X[rest], c1[rest], c2[rest], c3[rest]
+        else:
+            rest = slice(None)
+        _, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], _PEAK_S)
         block[rest] = peak_curvature(fp, fpp)
-    return out
+    return out.reshape(shape)
 
 
 def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) -> np.ndarray:
