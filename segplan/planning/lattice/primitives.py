@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -199,12 +199,8 @@ class PrimitiveSet:
             frame = LatticeFrame((0.0, 0.0, 0.0), self.resolution, self.L)
             base = []
             for h in range(4):
-                pts, dl = [], []
-                for p in self.by_heading[h]:
-                    q, d = _sample(frame.union((0, 0, h), p), self.L, FINE_S, FINE_T)
-                    pts.append(q)
-                    dl.append(d)
-                base.append((np.stack(pts), np.array(dl)))
+                g = _geometry([frame.union((0, 0, h), p) for p in self.by_heading[h]])
+                base.append((_points(g, self.L, FINE_S, FINE_T), _covering(g, self.L, FINE_S, FINE_T)))
             out = []
             for h in range(NH):
                 pts, dl = base[h % 4]
@@ -245,26 +241,32 @@ class PrimitiveSet:
         return out
 
 
-def _rotate_quarter(p: Primitive, q: int) -> Primitive:
-    """``p`` turned by ``q`` quarter turns (exact in lattice integers)."""
-    di, dj, pts = p.di, p.dj, p.points
-    for _ in range(q):
-        di, dj = -dj, di
-        pts = np.column_stack((-pts[:, 1], pts[:, 0]))
-    return Primitive(
-        (p.h0 + 4 * q) % NH,
-        (p.h1 + 4 * q) % NH,
-        di,
-        dj,
-        p.cost,
-        p.alpha,
-        p.d,
-        p.phi0,
-        p.phi1,
-        p.peak_curvature,
-        np.ascontiguousarray(pts),
-        p.delta,
-    )
+def _all_headings(base: list[list[Primitive]]) -> tuple[tuple[Primitive, ...], ...]:
+    """The primitives of every heading from those of headings 0..3: heading ``h`` holds those
+    of ``h % 4`` turned by ``h // 4`` quarter turns (exact: integers swapped and negated, the
+    points' coordinates too)."""
+    out = [tuple(b) for b in base]
+    for h in range(4, NH):
+        q, prims = h // 4, base[h % 4]
+        pts = np.stack([p.points for p in prims])
+        x, y = pts[..., 0], pts[..., 1]
+        if q == 1:
+            pts = np.stack((-y, x), axis=-1)
+        elif q == 2:
+            pts = -pts
+        else:
+            pts = np.stack((y, -x), axis=-1)
+        turned = []
+        for p, points in zip(prims, pts, strict=True):
+            di, dj = ((-p.dj, p.di), (-p.di, -p.dj), (p.dj, -p.di))[q - 1]
+            h0, h1 = (p.h0 + 4 * q) % NH, (p.h1 + 4 * q) % NH
+            turned.append(
+                Primitive(
+                    h0, h1, di, dj, p.cost, p.alpha, p.d, p.phi0, p.phi1, p.peak_curvature, points, p.delta
+                )
+            )
+        out.append(tuple(turned))
+    return tuple(out)
 
 
 def _chord_reach(r: float, R: float) -> float:
@@ -364,38 +366,73 @@ def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) ->
     return a
 
 
-def _sample(
-    u: Union, L: float, S: np.ndarray = SAMPLE_S, T: np.ndarray = SAMPLE_T
-) -> tuple[np.ndarray, float]:
-    """Swept-segment points of ``u`` relative to its start (abscissae ``S``, positions along
-    the segment ``T``, fractions), and their covering radius ``delta``."""
-    x = u.x_end * S
-    A = u.to_world(x, u.f(x)) - np.array(u.p0[:2])
-    h = u.heading(x)
-    U = np.column_stack((np.cos(h), np.sin(h)))
-    pts = (A[:, None, :] + L * T[None, :, None] * U[:, None, :]).reshape(-1, 2)
-    # covering radius: half the longest move of A or B between consecutive abscissae (measured
-    # along a dense sampling: path length, not chord) plus half the spacing along the segment
+def _geometry(unions: list[Union]) -> tuple[np.ndarray, ...]:
+    """Per union, as columns ``(m, 1)``: start point ``x0, y0``, frame angle ``fa`` with its
+    cosine and sine (``math``'s, as :meth:`segplan.Union.to_world` takes them), span ``X`` and
+    coefficients ``c1, c2, c3``."""
+    rows = []
+    for u in unions:
+        fa = u.frame_angle
+        rows.append((u.p0.x, u.p0.y, fa, math.cos(fa), math.sin(fa), u.x_end, *u.coefficients[1:]))
+    return tuple(np.array(col)[:, None] for col in zip(*rows, strict=True))
+
+
+def _rear(g: tuple[np.ndarray, ...], x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """World coordinates ``x, y`` of the rear point A and headings, each ``(m, n)``, at frame
+    abscissae ``x`` ``(m, n)`` of the unions of :func:`_geometry` ``g``: :meth:`segplan.Union.f`,
+    :meth:`~segplan.Union.to_world` and :meth:`~segplan.Union.heading` vectorised over
+    unions, their arithmetic in their order (the same bits)."""
+    x0, y0, fa, c, s, _, c1, c2, c3 = g
+    y = ((c3 * x + c2) * x + c1) * x  # f(x)
+    heading = fa + np.arctan((3.0 * c3 * x + 2.0 * c2) * x + c1)  # frame angle + arctan f'(x)
+    return x0 + c * x - s * y, y0 + s * x + c * y, heading
+
+
+def _points(g: tuple[np.ndarray, ...], L: float, S: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Swept-segment points ``(m, len(S) len(T), 2)`` of the unions of :func:`_geometry` ``g``
+    relative to their starts: at abscissae ``S`` (fractions of the span) the rear point A and
+    the points at fractions ``T`` of the segment from A to the front wheel B."""
+    ax, ay, h = _rear(g, g[5] * S)
+    A = np.stack((ax, ay), axis=-1) - np.stack((g[0], g[1]), axis=-1)
+    U = np.stack((np.cos(h), np.sin(h)), axis=-1)
+    return (A[:, :, None, :] + L * T[None, None, :, None] * U[:, :, None, :]).reshape(len(A), -1, 2)
+
+
+def _covering(g: tuple[np.ndarray, ...], L: float, S: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Covering radius ``delta`` ``(m,)`` of :func:`_points`: every point of a union's swept
+    segment lies within ``delta`` of one of them.
+
+    Half the longest move of A or B between consecutive abscissae (measured along a dense
+    sampling: path length, not chord) plus half the spacing along the segment.
+    """
     per = 24
-    xd = u.x_end * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1)
-    Ad = u.to_world(xd, u.f(xd))
-    hd = u.heading(xd)
-    Bd = Ad + L * np.column_stack((np.cos(hd), np.sin(hd)))
-    la = np.hypot(*np.diff(Ad, axis=0).T)
-    lb = np.hypot(*np.diff(Bd, axis=0).T)
-    run = max(la.reshape(-1, per).sum(axis=1).max(), lb.reshape(-1, per).sum(axis=1).max())
-    delta = 0.5 * run * 1.02 + 0.5 * L * (T[1] - T[0])
-    return pts, float(delta)
+    ax, ay, h = _rear(g, g[5] * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1))
+    bx, by = ax + L * np.cos(h), ay + L * np.sin(h)  # the front wheel B
+    runs = []
+    for px, py in ((ax, ay), (bx, by)):
+        steps = np.hypot(np.diff(px, axis=1), np.diff(py, axis=1))
+        runs.append(steps.reshape(len(px), -1, per).sum(axis=-1).max(axis=-1))
+    return 0.5 * np.maximum(*runs) * 1.02 + 0.5 * L * (T[1] - T[0])
 
 
-def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
+def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> tuple[Primitive, Union]:
+    """A primitive, its covering radius still NaN (:func:`_covered` sets it), and its union."""
     th0 = _ANGLES[h0]
     u = Union((0.0, 0.0, th0), (i * r, j * r, _ANGLES[h1]), alpha, L)
-    pts, delta = _sample(u, L)
+    pts = _points(_geometry([u]), L, SAMPLE_S, SAMPLE_T)[0]
     cost = float(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10))
-    return Primitive(
-        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, delta
+    p = Primitive(
+        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, math.nan
     )
+    return p, u
+
+
+def _covered(made: list[tuple[Primitive, Union]], L: float) -> list[Primitive]:
+    """The primitives of :func:`_make` with their covering radii (one vectorised pass)."""
+    if not made:
+        return []
+    deltas = _covering(_geometry([u for _, u in made]), L, SAMPLE_S, SAMPLE_T)
+    return [replace(p, delta=float(dl)) for (p, _), dl in zip(made, deltas, strict=True)]
 
 
 def _rank(estimate: float, key: tuple[int, int, int, int], L: float) -> tuple:
@@ -522,8 +559,7 @@ def from_arrays(a: dict, L: float, max_steer: float, resolution: float) -> Primi
     for k, row in enumerate(zip(*cols, strict=True)):
         kw = dict(zip(FIELDS, row, strict=True))
         base[kw["h0"]].append(Primitive(**kw, points=np.ascontiguousarray(pts[k])))
-    kept = [[_rotate_quarter(p, h // 4) for p in base[h % 4]] for h in range(NH)]
-    return PrimitiveSet(L, max_steer, resolution, tuple(tuple(k) for k in kept))
+    return PrimitiveSet(L, max_steer, resolution, _all_headings(base))
 
 
 @functools.cache
@@ -580,7 +616,7 @@ def compute_primitive_set(
     kmax = math.tan(max_steer) / L
     R = 1.0 / kmax
     bound = max_reach(L, max_steer, r)
-    base: list[list[Primitive]] = [[] for _ in range(4)]
+    base: list[list[tuple[Primitive, Union]]] = [[] for _ in range(4)]
     for h0 in range(4):  # the straight unit step
         i, j = HEADING_VECTORS[h0]
         d = math.hypot(i, j) * r
@@ -599,9 +635,6 @@ def compute_primitive_set(
         ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
         _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
 
-    def all_headings(b):
-        return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
-
     kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
 
     def keep(p: Primitive) -> None:
@@ -609,7 +642,7 @@ def compute_primitive_set(
             kept[h0_].append((di, dj, h1_, c))
 
     for b in base:
-        for p in b:
+        for p, _ in b:
             keep(p)
     per: dict = {}
     for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
@@ -618,13 +651,13 @@ def compute_primitive_set(
             continue
         if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
             continue
-        p = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
+        p, u = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
         if margins is not None:
             _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
             _note(margins, "reach", abs(np.abs(p.points).max() - bound) / bound)
         if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
             continue
-        base[h0].append(p)
+        base[h0].append((p, u))
         per[key] = per.get(key, 0) + 1
         keep(p)
-    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))
+    return PrimitiveSet(L, float(max_steer), r, _all_headings([_covered(b, L) for b in base]))
