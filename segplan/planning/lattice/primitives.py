@@ -628,9 +628,9 @@ def compute_primitive_set(
         a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6), margins)
         ok = np.isfinite(a)
         est = longd_gauss_intrinsic(d[ok], phi0[ok], phi1[ok], a[ok], L)
-        for row in zip(est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok], strict=True):
-            e, i, j, h1, al, dd, p0, p1 = (float(v) for v in row)
-            cands.append((e, h0, int(h1), int(i), int(j), al, dd, p0, p1))
+        cols = (est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok])
+        for e, i, j, h1, al, dd, p0, p1 in zip(*(np.asarray(c).tolist() for c in cols), strict=True):
+            cands.append((e, h0, h1, i, j, al, dd, p0, p1))
     cands.sort(key=lambda c: _rank(c[0], c[1:5], L))
     if margins is not None:
         ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
@@ -646,7 +646,10 @@ def compute_primitive_set(
         for p, _ in b:
             keep(p)
     per: dict = {}
+    full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
     for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
+        if full == 4 * len(TURNS):
+            break
         key = (h0, (h1 - h0) % NH)
         if per.get(key, 0) >= PER_TURN:
             continue
@@ -660,5 +663,6 @@ def compute_primitive_set(
             continue
         base[h0].append((p, u))
         per[key] = per.get(key, 0) + 1
+        full += per[key] == PER_TURN
         keep(p)
     return PrimitiveSet(L, float(max_steer), r, _all_headings([_covered(b, L) for b in base]))
