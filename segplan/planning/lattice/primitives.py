@@ -299,6 +299,9 @@ def _candidates(h0: int, r: float, R: float):
     return I[ok], J[ok], H1[ok], d[ok], phi0[ok], phi1[ok], lo[ok], hi[ok]
 
 
+#: Candidates whose LONGD [1] the selection computes in one batch (:func:`_exact`): the one it
+#: makes and the next of turns not yet full, most of which it makes too.
+_AHEAD = 8
 #: Unions per block of :func:`_peaks` (its temporaries stay in the CPU's caches).
 _PEAK_BLOCK = 4096
 
@@ -415,12 +418,19 @@ def _covering(g: tuple[np.ndarray, ...], L: float, S: np.ndarray, T: np.ndarray)
     return 0.5 * np.maximum(*runs) * 1.02 + 0.5 * L * (T[1] - T[0])
 
 
-def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> tuple[Primitive, Union]:
-    """A primitive, its covering radius still NaN (:func:`_covered` sets it), and its union."""
+def _exact(rows: list[tuple], L: float) -> list[float]:
+    """LONGD [1] (Romberg, ``rtol = 1e-10``) of candidates ``(..., alpha, d, phi0, phi1)``: one
+    batch, each value that of a call for it alone to the last bit (``each``)."""
+    alpha, d, phi0, phi1 = (np.array(col, dtype=float) for col in list(zip(*rows, strict=True))[-4:])
+    return np.atleast_1d(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, each=True)).tolist()
+
+
+def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1, cost) -> tuple[Primitive, Union]:
+    """A primitive of LONGD ``cost`` (:func:`_exact`), its covering radius still NaN
+    (:func:`_covered` sets it), and its union."""
     th0 = _ANGLES[h0]
     u = Union((0.0, 0.0, th0), (i * r, j * r, _ANGLES[h1]), alpha, L)
     pts = _points(_geometry([u]), L, SAMPLE_S, SAMPLE_T)[0]
-    cost = float(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10))
     p = Primitive(
         h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, math.nan
     )
@@ -618,10 +628,10 @@ def compute_primitive_set(
     R = 1.0 / kmax
     bound = max_reach(L, max_steer, r)
     base: list[list[tuple[Primitive, Union]]] = [[] for _ in range(4)]
-    for h0 in range(4):  # the straight unit step
+    straight = [(0.0, math.hypot(*HEADING_VECTORS[h0]) * r, 0.0, 0.0) for h0 in range(4)]  # unit steps
+    for h0, cost in enumerate(_exact(straight, L)):
         i, j = HEADING_VECTORS[h0]
-        d = math.hypot(i, j) * r
-        base[h0].append(_make(h0, h0, i, j, r, L, 0.0, d, 0.0, 0.0))
+        base[h0].append(_make(h0, h0, i, j, r, L, *straight[h0], cost))
     cands = []
     for h0 in range(4):
         I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
@@ -647,7 +657,8 @@ def compute_primitive_set(
             keep(p)
     per: dict = {}
     full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
-    for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
+    exact: dict[int, float] = {}  # LONGD [1] of the candidates made, and of some ahead of them
+    for n, (est, h0, h1, i, j, a, d, phi0, phi1) in enumerate(cands):
         if full == 4 * len(TURNS):
             break
         key = (h0, (h1 - h0) % NH)
@@ -655,7 +666,16 @@ def compute_primitive_set(
             continue
         if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
             continue
-        p, u = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
+        if n not in exact:  # this one and the next _AHEAD - 1 of turns not yet full, in one batch
+            ahead = [n]
+            for m in range(n + 1, len(cands)):
+                if len(ahead) == _AHEAD:
+                    break
+                c = cands[m]
+                if m not in exact and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN:
+                    ahead.append(m)
+            exact.update(zip(ahead, _exact([cands[m] for m in ahead], L), strict=True))
+        p, u = _make(h0, h1, i, j, r, L, a, d, phi0, phi1, exact[n])
         if margins is not None:
             _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
             _note(margins, "reach", abs(np.abs(p.points).max() - bound) / bound)
