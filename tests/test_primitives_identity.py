@@ -2,11 +2,15 @@
 
 ``tests/data/primitive_sets.npz`` holds 28 sets (unit ``L``, steering limits 5-80 deg,
 resolutions ``L / 2`` to ``L / 16`` and ``R / 32``) computed by
-:func:`segplan.planning.lattice.primitives.compute_primitive_set` before issue 25 made it
-faster, written by ``benchmarks/primitives_identity.py --write ... --sample test`` (its
+:func:`segplan.planning.lattice.primitives.compute_primitive_set` as it was at commit 05d743b,
+before issue 25 made it faster: ``PYTHONPATH=<that tree> python
+benchmarks/primitives_identity.py --write tests/data/primitive_sets.npz --sample test`` (its
 docstring: which sets, which fields). On the machine that wrote them the sets computed now
 are equal bit for bit; other processors round the last bits differently (primitives module
-docstring), hence the tolerance of 1e-12 relative.
+docstring), hence the tolerance of 1e-12 relative. The other tests hold each faster part to
+what it replaced, bit for bit: the screened steering test to the full sampling, the sampler
+vectorised over unions and the quarter turns of a heading to literal copies of the
+per-union and per-primitive code.
 """
 
 import math
