@@ -8,7 +8,7 @@ import numpy as np
 from segplan import Pose, Union
 from segplan.model.cost import chain_longd, checked_intrinsic, longd_exact_intrinsic
 from segplan.model.frame import heuristic_alpha
-from segplan.model.pose import intrinsic_interval
+from segplan.model.pose import alpha_interval, intrinsic_interval
 
 RTOL = 1e-8  # the planners' PLAN_RTOL
 
@@ -71,3 +71,29 @@ def test_the_two_geometries_differ_in_the_last_bit_sometimes():
     module's values, the poses' numpy geometry gives another last bit on some chains."""
     chains = [c for s in range(10) for c in _chains(seed=s)]
     assert any(chain_longd(c, RTOL) != chain_longd(c, RTOL, from_poses=True) for c in chains)
+
+
+def test_longd_of_each_union_in_a_batch_is_its_own_calls_bit_for_bit():
+    # longd_exact_intrinsic(..., each=True) (the primitives' batches of exact LONGD): every
+    # value and error estimate is that of a call for the union alone, whatever the batch
+    rng = np.random.default_rng(25)
+    n = 400
+    d = np.exp(rng.uniform(-2.0, 2.5, n))
+    phi0, phi1 = rng.uniform(-1.3, 1.3, (2, n))
+    lo, hi = alpha_interval(phi0, phi1)
+    keep = hi - lo > 0.01
+    d, phi0, phi1, lo, hi = d[keep], phi0[keep], phi1[keep], lo[keep], hi[keep]
+    alpha = lo + rng.uniform(0.02, 0.98, len(d)) * (hi - lo)
+    L = np.exp(rng.uniform(-1.0, 1.0, len(d)))
+    alone = [
+        longd_exact_intrinsic(*(float(v[k]) for v in (d, phi0, phi1, alpha, L)), full_output=True)
+        for k in range(len(d))
+    ]
+    for size in (1, 3, 8, 13, len(d)):
+        for start in range(0, len(d) - size + 1, max(size, 37)):
+            sl = slice(start, start + size)
+            value, error = longd_exact_intrinsic(
+                d[sl], phi0[sl], phi1[sl], alpha[sl], L[sl], full_output=True, each=True
+            )
+            assert value.tolist() == [v for v, _ in alone[sl]]
+            assert error.tolist() == [e for _, e in alone[sl]]

@@ -54,3 +54,33 @@ def test_romberg_rejects_bad_arguments(kwargs):
     args = dict(a=0.0, b=1.0) | kwargs
     with pytest.raises(ValueError):
         romberg(np.cos, **args)
+
+
+def test_each_stops_every_integral_as_a_call_for_it_alone():
+    # integrals of different difficulty: alone, each stops at its own level; in one batch with
+    # each=True, each gets the value and error of its own call to the last bit (its samples
+    # contiguous: the transpose of a (batch, m) array), not those of the level where all stop
+    w = np.array([0.5, 3.0, 9.0, 25.0, 1.0, 60.0, 2.0, 14.0, 0.1])
+    alone = [romberg(lambda x, v=v: np.cos(v * x) + x * x, 0.0, 1.5, rtol=1e-11) for v in w]
+
+    def f(x):
+        return (np.cos(np.multiply.outer(w, x)) + x * x).T
+
+    value, error = romberg(f, 0.0, 1.5, rtol=1e-11, each=True)
+    assert value.tolist() == [float(v) for v, _ in alone]
+    assert error.tolist() == [float(e) for _, e in alone]
+    together, _ = romberg(f, 0.0, 1.5, rtol=1e-11)  # without: every integral at the last level
+    assert together.tolist() != value.tolist()
+    np.testing.assert_allclose(together, value, rtol=1e-10)
+
+
+def test_each_raises_for_the_integrals_that_never_meet_the_tolerance():
+    with pytest.raises(RombergError, match="worst relative error"):
+        romberg(
+            lambda x: np.stack((np.cos(x), np.sqrt(np.abs(x - 1 / 3))), axis=-1),
+            0.0,
+            1.0,
+            1e-15,
+            max_levels=8,
+            each=True,
+        )

@@ -264,3 +264,29 @@ def test_peak_curvature_is_a_lower_bound_of_the_exact_maximum():
         _, c1, c2, c3 = u.coefficients
         _, fp, fpp = curvature_samples(u.x_end, c1, c2, c3, np.linspace(0.0, 1.0, 33))
         assert peak_curvature(fp, fpp) <= u.max_curvature() * (1 + 1e-12)
+
+
+def test_curvature_stationary_is_numpy_polynomials_bit_for_bit():
+    """The quartic ``N`` and its roots on plain arrays give the very bits of the
+    ``numpy.polynomial`` objects they replace (literal copy below, as before issue 25): the
+    coefficients, their zeros' signs, and the roots, for random cubics and degenerate ones
+    (straight, a parabola, no linear or no quadratic term)."""
+    from segplan.model.union import _quartic, _roots, curvature_polynomials
+
+    def old(c1, c2, c3):
+        p1 = np.polynomial.Polynomial([c1, 2 * c2, 3 * c3])
+        p2 = np.polynomial.Polynomial([2 * c2, 6 * c3])
+        return 6 * c3 * (1 + p1**2) - 3 * p1 * p2**2
+
+    rng = np.random.default_rng(25)
+    _, c1, c2, c3 = _random_cubics(rng, (3000,))
+    cases = list(zip(c1.tolist(), c2.tolist(), c3.tolist(), strict=True))
+    cases += [(0.0, 0.0, 0.0), (0.7, 0.0, 0.0), (0.0, 1.5, 0.0), (0.5, 0.3, 0.0), (0.0, 0.0, 2.0)]
+    cases += [(1.0, 0.0, 1.0), (0.0, -1.0, 1.0), (-0.0, 0.25, -0.0)]
+    for c in cases:
+        ref = old(*c)
+        coef = _quartic(*c)
+        assert _same_bits(coef, ref.coef) and _same_bits(np.signbit(coef), np.signbit(ref.coef)), c
+        assert _same_bits(curvature_polynomials(*c)[2].coef, ref.coef), c
+        if np.any(ref.coef != 0):
+            assert _same_bits(_roots(coef), ref.roots()), c

@@ -99,17 +99,22 @@ def _scalar_or_array(value):
 
 
 # -- formula [1] -----------------------------------------------------------------------
-def _front_speed(X, c1, c2, c3, L):
-    """The integrand of [1] as a function of ``tau = x / X``, coefficients computed once."""
+def _speed(x, X, c1, c2, c3, L):
+    """``X`` times the integrand of [1] at the frame abscissae ``x``."""
+    fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x  # f'(x)
+    fpp = 2.0 * c2 + 6.0 * c3 * x  # f''(x)
+    w = 1.0 + fp * fp  # 1 + f'^2
+    return X * np.sqrt(w + (L * fpp / w) ** 2)  # [1]
 
-    def integrand(tau):
-        x = np.multiply.outer(tau, X)
-        fp = c1 + (2.0 * c2 + 3.0 * c3 * x) * x  # f'(x)
-        fpp = 2.0 * c2 + 6.0 * c3 * x  # f''(x)
-        w = 1.0 + fp * fp  # 1 + f'^2
-        return X * np.sqrt(w + (L * fpp / w) ** 2)  # [1]
 
-    return integrand
+def _front_speed(X, c1, c2, c3, L, each=False):
+    """The integrand of [1] as a function of ``tau = x / X``, coefficients computed once:
+    ``tau`` of shape ``(m,)`` gives ``(m, *batch)``; with ``each``, each union's ``m`` values
+    contiguous (a transposed view: :func:`segplan.model.romberg.romberg`'s ``each``)."""
+    if not each:
+        return lambda tau: _speed(np.multiply.outer(tau, X), X, c1, c2, c3, L)
+    cols = [np.asarray(v)[..., None] for v in (X, c1, c2, c3, L)]
+    return lambda tau: np.moveaxis(_speed(np.multiply.outer(X, tau), *cols), -1, 0)
 
 
 def longd_integrand(tau, d, phi0, phi1, alpha, L):
@@ -121,10 +126,13 @@ def longd_integrand(tau, d, phi0, phi1, alpha, L):
     return _front_speed(*cubic_coefficients(d, phi0, phi1, alpha), L)(tau)
 
 
-def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False):
+def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False, each=False):
     """Formula [1] by Romberg integration, in intrinsic parameters (vectorised).
 
-    The caller guarantees valid inputs (see :func:`checked_intrinsic`).
+    The caller guarantees valid inputs (see :func:`checked_intrinsic`). A batch stops where
+    every union's estimate meets ``rtol``; with ``each``, each union stops where its own
+    does, and its value and error are those of a call for that union alone, to the last bit
+    (:func:`segplan.model.romberg.romberg`): a batch of unions for about the time of one.
 
     Returns
     -------
@@ -133,8 +141,15 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
         Romberg's error estimate, only with ``full_output=True``.
     """
     d, phi0, phi1, alpha, L = np.broadcast_arrays(d, phi0, phi1, alpha, L)
-    integrand = _front_speed(*cubic_coefficients(d, phi0, phi1, alpha), L)  # coefficients once
-    value, error = romberg(integrand, 0.0, 1.0, rtol=rtol)
+    if each:  # each union's coefficients as its own call computes them: of scalars (X**2 is
+        # then pow's, in an array a product, which may differ in the last bit)
+        unions = zip(d.ravel(), phi0.ravel(), phi1.ravel(), alpha.ravel(), strict=True)
+        rows = np.array([cubic_coefficients(*u) for u in unions], dtype=float).reshape(-1, 4)
+        coef = tuple(rows[:, k].reshape(d.shape) for k in range(4))
+    else:
+        coef = cubic_coefficients(d, phi0, phi1, alpha)
+    integrand = _front_speed(*coef, L, each)  # coefficients once
+    value, error = romberg(integrand, 0.0, 1.0, rtol=rtol, each=each)
     if full_output:
         return _scalar_or_array(value), _scalar_or_array(error)
     return _scalar_or_array(value)

@@ -28,6 +28,7 @@ def romberg(
     atol: float = 0.0,
     min_levels: int = 4,
     max_levels: int = 22,
+    each: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Integrate ``f`` over ``[a, b]`` by Romberg's method.
 
@@ -43,6 +44,13 @@ def romberg(
         integral of the batch, the usual Romberg error estimate.
     min_levels, max_levels : int
         Halvings done at least / at most (level ``k`` uses ``2**k + 1`` points).
+    each : bool
+        Stop each integral of the batch at the first level where its own estimate meets the
+        tolerance (the value and error estimate of a call for that integral alone), rather
+        than every integral at the first level where all do. A call for one integral sums
+        its samples as one 1-d array; where ``f`` returns each integral's samples contiguous
+        (the transpose of a ``(*batch, m)`` array), numpy sums each the same way, and the
+        batch gives every integral's value of its own call to the last bit.
 
     Returns
     -------
@@ -65,6 +73,9 @@ def romberg(
     h = b - a
     ends = np.asarray(f(np.array([a, b], dtype=float)), dtype=float)
     row = [0.5 * h * (ends[0] + ends[1])]  # R(0, 0): one trapezoid
+    if each:  # the integrals stopped, their values and error estimates
+        done = np.zeros(np.shape(row[0]), dtype=bool)
+        value = estimate = np.zeros(done.shape)
     for k in range(1, max_levels + 1):
         h *= 0.5
         mids = a + h * (2 * np.arange(2 ** (k - 1)) + 1)
@@ -74,8 +85,20 @@ def romberg(
             new.append(new[j - 1] + (new[j - 1] - row[j - 1]) / (4.0**j - 1.0))
         error = np.abs(new[k] - row[k - 1])
         row = new
-        if k >= min_levels and np.all(error <= np.maximum(atol, rtol * np.abs(new[k]))):
-            return new[k], error
+        if k < min_levels:
+            continue
+        met = error <= np.maximum(atol, rtol * np.abs(new[k]))
+        if not each:
+            if np.all(met):
+                return new[k], error
+            continue
+        stop = met & ~done
+        value, estimate = np.where(stop, new[k], value), np.where(stop, error, estimate)
+        done = done | met
+        if np.all(done):
+            return value, estimate
+    if each:
+        error = np.where(done, 0.0, error)  # the worst of those not stopped
     worst = float(np.max(error / np.maximum(np.abs(row[-1]), np.finfo(float).tiny)))
     raise RombergError(
         f"Romberg did not reach rtol={rtol}, atol={atol} in {max_levels} levels "

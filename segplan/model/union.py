@@ -76,12 +76,59 @@ def curvature_polynomials(c1: float, c2: float, c3: float):
     Returns
     -------
     fp, fpp, crit : numpy.polynomial.Polynomial
-        ``f'``, ``f''`` and ``N``.
+        ``f'``, ``f''`` and ``N`` (:func:`_quartic`).
     """
     p1 = np.polynomial.Polynomial([c1, 2 * c2, 3 * c3])  # f'
     p2 = np.polynomial.Polynomial([2 * c2, 6 * c3])  # f''
-    crit = 6 * c3 * (1 + p1**2) - 3 * p1 * p2**2  # N = f''' (1 + f'^2) - 3 f' f''^2
-    return p1, p2, crit
+    return p1, p2, np.polynomial.Polynomial(_quartic(c1, c2, c3))
+
+
+def _trim(c: np.ndarray) -> np.ndarray:
+    """``c`` without its trailing zero coefficients (one kept), as ``numpy.polynomial`` trims."""
+    n = len(c)
+    while n > 1 and c[n - 1] == 0:
+        n -= 1
+    return c[:n]
+
+
+def _quartic(c1: float, c2: float, c3: float) -> np.ndarray:
+    """Coefficients (lowest first, trailing zeros trimmed) of the quartic
+    ``N = f''' (1 + f'^2) - 3 f' f''^2`` of :func:`curvature_polynomials`.
+
+    The operations of ``numpy.polynomial``'s arithmetic on ``Polynomial`` objects
+    (``6 c3 (1 + p1**2) - 3 p1 p2**2``), in its order, on plain arrays: the same values to the
+    last bit, without the objects' overhead.
+    """
+    p1 = _trim(np.array([c1, 2 * c2, 3 * c3]))  # f'
+    p2 = _trim(np.array([2 * c2, 6 * c3]))  # f''
+    w = _trim(np.convolve(p1, p1))  # f'^2
+    w[0] += 1.0  # 1 + f'^2
+    a = _trim(np.convolve(_trim(w), np.array([6 * c3])))  # f''' (1 + f'^2)
+    b = _trim(np.convolve(_trim(np.convolve(p1, np.array([3.0]))), _trim(np.convolve(p2, p2))))  # 3 f' f''^2
+    if len(a) > len(b):
+        out = a
+        out[: len(b)] -= b
+    else:
+        out = -b
+        out[: len(a)] += a
+    return _trim(out)
+
+
+def _roots(c: np.ndarray) -> np.ndarray:
+    """Roots of the polynomial of trimmed coefficients ``c`` (lowest first), as
+    ``numpy.polynomial.polynomial.polyroots`` finds them: the eigenvalues of its companion
+    matrix, sorted."""
+    if len(c) < 2:
+        return np.array([], dtype=c.dtype)
+    if len(c) == 2:
+        return np.array([-c[0] / c[1]])
+    n = len(c) - 1
+    mat = np.zeros((n, n), dtype=c.dtype)
+    mat.reshape(-1)[n :: n + 1] = 1
+    mat[:, -1] -= c[:-1] / c[-1]
+    r = np.linalg.eigvals(mat)
+    r.sort()
+    return r
 
 
 def curvature_samples(X, c1, c2, c3, s):
@@ -358,10 +405,10 @@ class Union:
         curvature's extrema over any sub-interval lie at its ends or at these points.
         """
         _, c1, c2, c3 = self.coefficients
-        _, _, crit = curvature_polynomials(c1, c2, c3)
-        if not np.any(crit.coef != 0):
+        crit = _quartic(c1, c2, c3)
+        if not np.any(crit != 0):
             return []
-        roots = crit.roots()
+        roots = _roots(crit)
         return [r.real for r in roots if abs(r.imag) < 1e-9 and 0.0 < r.real < self.x_end]
 
     # -- world coordinates ---------------------------------------------------------

@@ -25,10 +25,10 @@ The set of heading ``k + 4`` is the set of ``k`` turned by 90 deg (exact in inte
 union's shape and cost do not change under a rigid motion, so the set is made once per
 ``(L, max_steer, resolution)`` (:func:`primitive_set`, kept in an explicit least-recently-
 used cache) and reused by every plan. The sets of the default lattice (45 deg steering,
-resolutions ``L / 8`` and ``L / 16``) are package data for a unit ``L``
+resolutions ``L / 2`` to ``L / 16``: :data:`STORED_CELLS`) are package data for a unit ``L``
 (``primitives.npz``, written with its provenance by ``python -m segplan.fit``, which
 recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a fresh
-process does not spend seconds computing them.
+process does not compute them (about 0.14 s of CPU for the four).
 
 The selection is the same on every processor. Many candidates tie exactly (a turn and its
 mirror image about a diagonal or an axis of the lattice have the same chord, turn and
@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -99,6 +99,8 @@ FINE_S = np.linspace(0.0, 1.0, 49)
 FINE_T = np.linspace(0.0, 1.0, 25)
 _STEER_ALPHAS = 15
 _PEAK_S = np.linspace(0.0, 1.0, 49)
+#: The ends of :data:`_PEAK_S` (:func:`_peaks`' screen), one row each.
+_ENDS_S = _PEAK_S[[0, -1], None]
 
 
 @dataclass(frozen=True)
@@ -197,12 +199,8 @@ class PrimitiveSet:
             frame = LatticeFrame((0.0, 0.0, 0.0), self.resolution, self.L)
             base = []
             for h in range(4):
-                pts, dl = [], []
-                for p in self.by_heading[h]:
-                    q, d = _sample(frame.union((0, 0, h), p), self.L, FINE_S, FINE_T)
-                    pts.append(q)
-                    dl.append(d)
-                base.append((np.stack(pts), np.array(dl)))
+                g = _geometry([frame.union((0, 0, h), p) for p in self.by_heading[h]])
+                base.append((_points(g, self.L, FINE_S, FINE_T), _covering(g, self.L, FINE_S, FINE_T)))
             out = []
             for h in range(NH):
                 pts, dl = base[h % 4]
@@ -243,26 +241,32 @@ class PrimitiveSet:
         return out
 
 
-def _rotate_quarter(p: Primitive, q: int) -> Primitive:
-    """``p`` turned by ``q`` quarter turns (exact in lattice integers)."""
-    di, dj, pts = p.di, p.dj, p.points
-    for _ in range(q):
-        di, dj = -dj, di
-        pts = np.column_stack((-pts[:, 1], pts[:, 0]))
-    return Primitive(
-        (p.h0 + 4 * q) % NH,
-        (p.h1 + 4 * q) % NH,
-        di,
-        dj,
-        p.cost,
-        p.alpha,
-        p.d,
-        p.phi0,
-        p.phi1,
-        p.peak_curvature,
-        np.ascontiguousarray(pts),
-        p.delta,
-    )
+def _all_headings(base: list[list[Primitive]]) -> tuple[tuple[Primitive, ...], ...]:
+    """The primitives of every heading from those of headings 0..3: heading ``h`` holds those
+    of ``h % 4`` turned by ``h // 4`` quarter turns (exact: integers swapped and negated, the
+    points' coordinates too)."""
+    out = [tuple(b) for b in base]
+    for h in range(4, NH):
+        q, prims = h // 4, base[h % 4]
+        pts = np.stack([p.points for p in prims])
+        x, y = pts[..., 0], pts[..., 1]
+        if q == 1:
+            pts = np.stack((-y, x), axis=-1)
+        elif q == 2:
+            pts = -pts
+        else:
+            pts = np.stack((y, -x), axis=-1)
+        turned = []
+        for p, points in zip(prims, pts, strict=True):
+            di, dj = ((-p.dj, p.di), (-p.di, -p.dj), (p.dj, -p.di))[q - 1]
+            h0, h1 = (p.h0 + 4 * q) % NH, (p.h1 + 4 * q) % NH
+            turned.append(
+                Primitive(
+                    h0, h1, di, dj, p.cost, p.alpha, p.d, p.phi0, p.phi1, p.peak_curvature, points, p.delta
+                )
+            )
+        out.append(tuple(turned))
+    return tuple(out)
 
 
 def _chord_reach(r: float, R: float) -> float:
@@ -295,39 +299,63 @@ def _candidates(h0: int, r: float, R: float):
     return I[ok], J[ok], H1[ok], d[ok], phi0[ok], phi1[ok], lo[ok], hi[ok]
 
 
+#: Candidates whose LONGD [1] the selection computes in one batch (:func:`_exact`): the one it
+#: makes and the next of turns not yet full, most of which it makes too.
+_AHEAD = 8
 #: Unions per block of :func:`_peaks` (its temporaries stay in the CPU's caches).
-_PEAK_BLOCK = 256
+_PEAK_BLOCK = 4096
 
 
-def _peaks(d, phi0, phi1, alpha) -> np.ndarray:
-    """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays of
-    one shape, at least 1-d; in blocks of :data:`_PEAK_BLOCK` rows: the same values, less
-    memory traffic)."""
+def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
+    """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays
+    that broadcast to one shape; in blocks of :data:`_PEAK_BLOCK` unions: the same values,
+    less memory traffic).
+
+    With ``kmax``: ``inf`` for the unions whose curvature at one of their ends (the first and
+    last of the 49 samples, the same values to the last bit) already exceeds ``kmax``, their
+    other samples not computed; ``peak <= kmax`` is then decided as without ``kmax``, and the
+    least of several peaks is the same wherever it is at most ``kmax``.
+    """
     d, phi0, phi1, alpha = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha))
     )
-    out = np.empty(d.shape)
-    for k in range(0, len(d), _PEAK_BLOCK):
+    shape = d.shape
+    d, phi0, phi1, alpha = (v.ravel() for v in (d, phi0, phi1, alpha))
+    out = np.empty(d.size)
+    for k in range(0, d.size, _PEAK_BLOCK):
         sl = slice(k, k + _PEAK_BLOCK)
-        coef = cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
-        X, c1, c2, c3 = (np.asarray(v, dtype=float)[..., None] for v in coef)
-        _, fp, fpp = curvature_samples(X, c1, c2, c3, _PEAK_S)
-        out[sl] = peak_curvature(fp, fpp)
-    return out
+        X, c1, c2, c3 = (
+            np.asarray(v, dtype=float) for v in cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
+        )
+        block = out[sl]
+        if kmax is not None:
+            _, fp, fpp = curvature_samples(X, c1, c2, c3, _ENDS_S)  # the ends, one row each
+            over = peak_curvature(fp, fpp, axis=0) > kmax
+            block[over] = math.inf
+            rest = ~over
+            X, c1, c2, c3 = X[rest], c1[rest], c2[rest], c3[rest]
+        else:
+            rest = slice(None)
+        _, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], _PEAK_S)
+        block[rest] = peak_curvature(fp, fpp)
+    return out.reshape(shape)
 
 
 def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) -> np.ndarray:
     """Per union: the optimal frame's alpha if its cubic keeps the steering limit (sampled),
     else the alpha of least sampled peak curvature among ``_STEER_ALPHAS`` if that keeps it,
-    else NaN (vectorised). ``margins``: see :func:`selection_margins`."""
+    else NaN (vectorised). ``margins``: see :func:`selection_margins` (every peak is then
+    computed; without, the unions whose ends already break the limit are not sampled further:
+    :func:`_peaks`)."""
+    screen = kmax if margins is None else None
     a = np.clip(np.asarray(heuristic_alpha(d, phi0, phi1, L), dtype=float), lo + 1e-9, hi - 1e-9)
-    peak = _peaks(d, phi0, phi1, a)
+    peak = _peaks(d, phi0, phi1, a, screen)
     bad = ~(peak <= kmax)
     checked = [peak]
     if bad.any():
         f = (np.arange(1, _STEER_ALPHAS + 1) / (_STEER_ALPHAS + 1))[None, :]
         grid = lo[bad, None] + (hi[bad] - lo[bad])[:, None] * f
-        pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid)
+        pk = _peaks(d[bad, None], phi0[bad, None], phi1[bad, None], grid, screen)
         k = np.argmin(pk, axis=1)
         best = grid[np.arange(len(k)), k]
         least = pk[np.arange(len(k)), k]
@@ -341,38 +369,80 @@ def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) ->
     return a
 
 
-def _sample(
-    u: Union, L: float, S: np.ndarray = SAMPLE_S, T: np.ndarray = SAMPLE_T
-) -> tuple[np.ndarray, float]:
-    """Swept-segment points of ``u`` relative to its start (abscissae ``S``, positions along
-    the segment ``T``, fractions), and their covering radius ``delta``."""
-    x = u.x_end * S
-    A = u.to_world(x, u.f(x)) - np.array(u.p0[:2])
-    h = u.heading(x)
-    U = np.column_stack((np.cos(h), np.sin(h)))
-    pts = (A[:, None, :] + L * T[None, :, None] * U[:, None, :]).reshape(-1, 2)
-    # covering radius: half the longest move of A or B between consecutive abscissae (measured
-    # along a dense sampling: path length, not chord) plus half the spacing along the segment
+def _geometry(unions: list[Union]) -> tuple[np.ndarray, ...]:
+    """Per union, as columns ``(m, 1)``: start point ``x0, y0``, frame angle ``fa`` with its
+    cosine and sine (``math``'s, as :meth:`segplan.Union.to_world` takes them), span ``X`` and
+    coefficients ``c1, c2, c3``."""
+    rows = []
+    for u in unions:
+        fa = u.frame_angle
+        rows.append((u.p0.x, u.p0.y, fa, math.cos(fa), math.sin(fa), u.x_end, *u.coefficients[1:]))
+    return tuple(np.array(col)[:, None] for col in zip(*rows, strict=True))
+
+
+def _rear(g: tuple[np.ndarray, ...], x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """World coordinates ``x, y`` of the rear point A and headings, each ``(m, n)``, at frame
+    abscissae ``x`` ``(m, n)`` of the unions of :func:`_geometry` ``g``: :meth:`segplan.Union.f`,
+    :meth:`~segplan.Union.to_world` and :meth:`~segplan.Union.heading` vectorised over
+    unions, their arithmetic in their order (the same bits)."""
+    x0, y0, fa, c, s, _, c1, c2, c3 = g
+    y = ((c3 * x + c2) * x + c1) * x  # f(x)
+    heading = fa + np.arctan((3.0 * c3 * x + 2.0 * c2) * x + c1)  # frame angle + arctan f'(x)
+    return x0 + c * x - s * y, y0 + s * x + c * y, heading
+
+
+def _points(g: tuple[np.ndarray, ...], L: float, S: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Swept-segment points ``(m, len(S) len(T), 2)`` of the unions of :func:`_geometry` ``g``
+    relative to their starts: at abscissae ``S`` (fractions of the span) the rear point A and
+    the points at fractions ``T`` of the segment from A to the front wheel B."""
+    ax, ay, h = _rear(g, g[5] * S)
+    A = np.stack((ax, ay), axis=-1) - np.stack((g[0], g[1]), axis=-1)
+    U = np.stack((np.cos(h), np.sin(h)), axis=-1)
+    return (A[:, :, None, :] + L * T[None, None, :, None] * U[:, :, None, :]).reshape(len(A), -1, 2)
+
+
+def _covering(g: tuple[np.ndarray, ...], L: float, S: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """Covering radius ``delta`` ``(m,)`` of :func:`_points`: every point of a union's swept
+    segment lies within ``delta`` of one of them.
+
+    Half the longest move of A or B between consecutive abscissae (measured along a dense
+    sampling: path length, not chord) plus half the spacing along the segment.
+    """
     per = 24
-    xd = u.x_end * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1)
-    Ad = u.to_world(xd, u.f(xd))
-    hd = u.heading(xd)
-    Bd = Ad + L * np.column_stack((np.cos(hd), np.sin(hd)))
-    la = np.hypot(*np.diff(Ad, axis=0).T)
-    lb = np.hypot(*np.diff(Bd, axis=0).T)
-    run = max(la.reshape(-1, per).sum(axis=1).max(), lb.reshape(-1, per).sum(axis=1).max())
-    delta = 0.5 * run * 1.02 + 0.5 * L * (T[1] - T[0])
-    return pts, float(delta)
+    ax, ay, h = _rear(g, g[5] * np.linspace(0.0, 1.0, (len(S) - 1) * per + 1))
+    bx, by = ax + L * np.cos(h), ay + L * np.sin(h)  # the front wheel B
+    runs = []
+    for px, py in ((ax, ay), (bx, by)):
+        steps = np.hypot(np.diff(px, axis=1), np.diff(py, axis=1))
+        runs.append(steps.reshape(len(px), -1, per).sum(axis=-1).max(axis=-1))
+    return 0.5 * np.maximum(*runs) * 1.02 + 0.5 * L * (T[1] - T[0])
 
 
-def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1) -> Primitive:
+def _exact(rows: list[tuple], L: float) -> list[float]:
+    """LONGD [1] (Romberg, ``rtol = 1e-10``) of candidates ``(..., alpha, d, phi0, phi1)``: one
+    batch, each value that of a call for it alone to the last bit (``each``)."""
+    alpha, d, phi0, phi1 = (np.array(col, dtype=float) for col in list(zip(*rows, strict=True))[-4:])
+    return np.atleast_1d(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, each=True)).tolist()
+
+
+def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1, cost) -> tuple[Primitive, Union]:
+    """A primitive of LONGD ``cost`` (:func:`_exact`), its covering radius still NaN
+    (:func:`_covered` sets it), and its union."""
     th0 = _ANGLES[h0]
     u = Union((0.0, 0.0, th0), (i * r, j * r, _ANGLES[h1]), alpha, L)
-    pts, delta = _sample(u, L)
-    cost = float(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10))
-    return Primitive(
-        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, delta
+    pts = _points(_geometry([u]), L, SAMPLE_S, SAMPLE_T)[0]
+    p = Primitive(
+        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, math.nan
     )
+    return p, u
+
+
+def _covered(made: list[tuple[Primitive, Union]], L: float) -> list[Primitive]:
+    """The primitives of :func:`_make` with their covering radii (one vectorised pass)."""
+    if not made:
+        return []
+    deltas = _covering(_geometry([u for _, u in made]), L, SAMPLE_S, SAMPLE_T)
+    return [replace(p, delta=float(dl)) for (p, _), dl in zip(made, deltas, strict=True)]
 
 
 def _rank(estimate: float, key: tuple[int, int, int, int], L: float) -> tuple:
@@ -436,7 +506,8 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     are read from the package data (:data:`DATA_PATH`, written by ``python -m segplan.fit``)
     and scaled by ``L``: a union's shape and LONGD scale with ``L`` and the steering test is
     invariant under the scaling, so the set of any ``L`` is the unit set scaled. Other sets
-    are computed (:func:`compute_primitive_set`, about a second). Either way a set is kept
+    are computed (:func:`compute_primitive_set`: 20-70 ms of CPU for steering limits of 30-60
+    deg at ``L / 2`` to ``L / 16``, more for a robot turning wider). Either way a set is kept
     (least-recently-used cache of 8 sets: :func:`primitive_set.cache_clear` empties it).
 
     Parameters
@@ -499,8 +570,7 @@ def from_arrays(a: dict, L: float, max_steer: float, resolution: float) -> Primi
     for k, row in enumerate(zip(*cols, strict=True)):
         kw = dict(zip(FIELDS, row, strict=True))
         base[kw["h0"]].append(Primitive(**kw, points=np.ascontiguousarray(pts[k])))
-    kept = [[_rotate_quarter(p, h // 4) for p in base[h % 4]] for h in range(NH)]
-    return PrimitiveSet(L, max_steer, resolution, tuple(tuple(k) for k in kept))
+    return PrimitiveSet(L, max_steer, resolution, _all_headings(base))
 
 
 @functools.cache
@@ -557,27 +627,24 @@ def compute_primitive_set(
     kmax = math.tan(max_steer) / L
     R = 1.0 / kmax
     bound = max_reach(L, max_steer, r)
-    base: list[list[Primitive]] = [[] for _ in range(4)]
-    for h0 in range(4):  # the straight unit step
+    base: list[list[tuple[Primitive, Union]]] = [[] for _ in range(4)]
+    straight = [(0.0, math.hypot(*HEADING_VECTORS[h0]) * r, 0.0, 0.0) for h0 in range(4)]  # unit steps
+    for h0, cost in enumerate(_exact(straight, L)):
         i, j = HEADING_VECTORS[h0]
-        d = math.hypot(i, j) * r
-        base[h0].append(_make(h0, h0, i, j, r, L, 0.0, d, 0.0, 0.0))
+        base[h0].append(_make(h0, h0, i, j, r, L, *straight[h0], cost))
     cands = []
     for h0 in range(4):
         I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
         a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6), margins)
         ok = np.isfinite(a)
         est = longd_gauss_intrinsic(d[ok], phi0[ok], phi1[ok], a[ok], L)
-        for row in zip(est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok], strict=True):
-            e, i, j, h1, al, dd, p0, p1 = (float(v) for v in row)
-            cands.append((e, h0, int(h1), int(i), int(j), al, dd, p0, p1))
+        cols = (est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok])
+        for e, i, j, h1, al, dd, p0, p1 in zip(*(np.asarray(c).tolist() for c in cols), strict=True):
+            cands.append((e, h0, h1, i, j, al, dd, p0, p1))
     cands.sort(key=lambda c: _rank(c[0], c[1:5], L))
     if margins is not None:
         ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
         _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
-
-    def all_headings(b):
-        return [[_rotate_quarter(p, h // 4) for p in b[h % 4]] for h in range(NH)]
 
     kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
 
@@ -586,22 +653,36 @@ def compute_primitive_set(
             kept[h0_].append((di, dj, h1_, c))
 
     for b in base:
-        for p in b:
+        for p, _ in b:
             keep(p)
     per: dict = {}
-    for est, h0, h1, i, j, a, d, phi0, phi1 in cands:
+    full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
+    exact: dict[int, float] = {}  # LONGD [1] of the candidates made, and of some ahead of them
+    for n, (est, h0, h1, i, j, a, d, phi0, phi1) in enumerate(cands):
+        if full == 4 * len(TURNS):
+            break
         key = (h0, (h1 - h0) % NH)
         if per.get(key, 0) >= PER_TURN:
             continue
         if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
             continue
-        p = _make(h0, h1, i, j, r, L, a, d, phi0, phi1)
+        if n not in exact:  # this one and the next _AHEAD - 1 of turns not yet full, in one batch
+            ahead = [n]
+            for m in range(n + 1, len(cands)):
+                if len(ahead) == _AHEAD:
+                    break
+                c = cands[m]
+                if m not in exact and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN:
+                    ahead.append(m)
+            exact.update(zip(ahead, _exact([cands[m] for m in ahead], L), strict=True))
+        p, u = _make(h0, h1, i, j, r, L, a, d, phi0, phi1, exact[n])
         if margins is not None:
             _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
             _note(margins, "reach", abs(np.abs(p.points).max() - bound) / bound)
         if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
             continue
-        base[h0].append(p)
+        base[h0].append((p, u))
         per[key] = per.get(key, 0) + 1
+        full += per[key] == PER_TURN
         keep(p)
-    return PrimitiveSet(L, float(max_steer), r, tuple(tuple(k) for k in all_headings(base)))
+    return PrimitiveSet(L, float(max_steer), r, _all_headings([_covered(b, L) for b in base]))
