@@ -77,3 +77,17 @@ def test_the_command_says_it_in_one_line(tmp_path, capsys):
     assert main(["plan", str(path), "--json"]) == EXIT_NO_PATH
     data = json.loads(capsys.readouterr().out)
     assert data["reason"] == "exhausted" and "no reverse gear" in data["message"]
+
+
+def test_tight_arc_searches_cut_by_the_expansion_limit_say_so():
+    """large-001 of the kind floors: the lattice from the start runs out at once (a start the
+    lattice cannot leave), the searches between tight arcs at the ends would join (the
+    planner's own limit solves it) but 1000 expansions stop them after two: the reason is the
+    limit, not "exhausted", and the message says to raise it."""
+    from segplan.studies import floor_kinds
+
+    sc = floor_kinds.kind_floor("large", 1)
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(sc, max_expansions=1000, time_limit=60)
+    assert info.value.reason == "expansions" and info.value.expanded == 1000
+    assert "max_expansions=1000 was reached before the rest were tried" in str(info.value)

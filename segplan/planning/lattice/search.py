@@ -421,9 +421,11 @@ def _escape(
     pairs = arc_pairs(scenario, links, exc.escapable)[: schedule.max_escapes]
     used = exc.expanded
     tries = 0
+    cut = None  # the limit that stopped the tries, if one did
     for _, a, b in pairs:
         left = deadline - time.perf_counter()
         if used >= max_expansions or left <= 0:
+            cut = "expansions" if used >= max_expansions else "time"
             break
         tries += 1
         sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
@@ -440,11 +442,16 @@ def _escape(
             )
         except NoPathError as e:
             used += e.expanded
+            cut = e.reason if e.reason in ("expansions", "time") else None
             continue
         return join_arcs(scenario, a, inner, b, used + inner.expanded, t0)
     exc.expanded = used
     exc.seconds = time.perf_counter() - t0
     tried = f"searches between tight arcs at the ends: {tries} of {len(pairs)} tried, none joined"
+    if cut is not None:  # the tries were cut short: not a result about the floor
+        limit = f"max_expansions={max_expansions}" if cut == "expansions" else "the time limit"
+        tried += f"; {limit} was reached before the rest were tried (more may join: raise it)"
+        exc.reason = cut
     exc.args = (f"{exc.head}; {tried}; expanded {used} states",)
     raise exc
 
