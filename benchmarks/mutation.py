@@ -172,6 +172,7 @@ TARGETS = {
     "planning/lattice/shortcut": LATTICE,
     "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
+    "floor/buckets": ["tests/test_buckets.py"],
     "floor/geometry": [
         "tests/test_geometry.py",
         "tests/test_collision.py",
