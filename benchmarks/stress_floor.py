@@ -18,9 +18,14 @@ Targets of issue 25: at most 5 s and 500 MB per plan. The results, with when, wh
 average, nice value) and at which commit, go to ``--out`` (JSON); the stored run is
 ``benchmarks/results/stress_floor.json``.
 
+``--cells-per-box`` instead measures the obstacles' bucket grid
+(:data:`segplan.floor.buckets.CELLS_PER_BOX`): one plan per value and floor, its CPU time;
+the grid changes no decision, so every value must give the same plan, bit for bit (checked).
+
 Usage::
 
     nice -n 19 python benchmarks/stress_floor.py [--floors 0 1 2] [--out benchmarks/results/stress_floor.json]
+    nice -n 19 python benchmarks/stress_floor.py --cells-per-box 0.25 0.5 1 2 4 --floors 0
 """
 
 from __future__ import annotations
@@ -46,13 +51,16 @@ def rss_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
-def one(index: int) -> dict:
+def one(index: int, cells_per_box: float | None) -> dict:
     """Build stress floor ``index`` and plan on it once, in this process (module docstring)."""
     import segplan
     import segplan.planning.context as context
     import segplan.planning.default as default
+    from segplan.floor import buckets
     from segplan.studies.floor_kinds import stress_floor
 
+    if cells_per_box is not None:
+        buckets.CELLS_PER_BOX = cells_per_box
     stages: dict = {}
 
     def timed(module, name: str, label: str) -> None:
@@ -139,9 +147,11 @@ def _cpu_model() -> str:
     return platform.processor()
 
 
-def child(index: int) -> dict:
+def child(index: int, cells_per_box: float | None) -> dict:
     """:func:`one` in a fresh process (its own peak memory)."""
     cmd = [sys.executable, __file__, "--one", str(index)]
+    if cells_per_box is not None:
+        cmd += ["--cells-per-box", str(cells_per_box)]
     env = dict(
         os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))
     )
@@ -152,30 +162,42 @@ def child(index: int) -> dict:
 def main(argv: list[str] | None = None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--floors", type=int, nargs="+", default=[0, 1, 2], help="stress floor indices")
+    parser.add_argument("--cells-per-box", type=float, nargs="+", help="measure the bucket grid's cell size")
     parser.add_argument("--out", metavar="JSON", help="store the results here (with provenance)")
     parser.add_argument("--one", type=int, help=argparse.SUPPRESS)  # the child process
     args = parser.parse_args(argv)
     if args.one is not None:
-        print(json.dumps(one(args.one)))
+        print(json.dumps(one(args.one, args.cells_per_box[0] if args.cells_per_box else None)))
         return {}
     result = provenance(["benchmarks/stress_floor.py", *(sys.argv[1:] if argv is None else argv)])
     result["targets"] = {"seconds": TARGET_SECONDS, "peak_rss_mb": TARGET_MB}
     runs = []
-    for index in args.floors:
-        r = child(index)
-        runs.append(r)
-        stages = " ".join(f"{k} {s['seconds']:.2f} ({s['cpu_seconds']:.2f})" for k, s in r["stages"].items())
-        what = f"{r['cost_m']:.3f} m, {r['nodes']} nodes" if r["found"] else f"no plan ({r['reason']})"
-        print(
-            f"{r['floor']}: {r['seconds']:.2f} s (CPU {r['cpu_seconds']:.2f} s, share {r['cpu_share']:.2f}), "
-            f"peak {r['peak_rss_mb']:.0f} MB; {what}; stages s (CPU s): {stages}",
-            flush=True,
-        )
+    for value in args.cells_per_box or [None]:
+        for index in args.floors:
+            r = child(index, value)
+            r["cells_per_box"] = value
+            runs.append(r)
+            head = f"{r['floor']}" + (f" cells/box {value:g}" if value is not None else "")
+            stages = " ".join(
+                f"{k} {s['seconds']:.2f} ({s['cpu_seconds']:.2f})" for k, s in r["stages"].items()
+            )
+            what = f"{r['cost_m']:.3f} m, {r['nodes']} nodes" if r["found"] else f"no plan ({r['reason']})"
+            print(
+                f"{head}: {r['seconds']:.2f} s (CPU {r['cpu_seconds']:.2f} s, share {r['cpu_share']:.2f}), "
+                f"peak {r['peak_rss_mb']:.0f} MB; {what}; stages s (CPU s): {stages}",
+                flush=True,
+            )
     result["runs"] = runs
     result["machine"]["load_average_after"] = [round(x, 2) for x in os.getloadavg()]
-    result["met"] = all(
-        r["found"] and r["seconds"] <= TARGET_SECONDS and r["peak_rss_mb"] <= TARGET_MB for r in runs
-    )
+    if args.cells_per_box:
+        for index in args.floors:
+            plans = {r["cost_hex"] if r["found"] else None for r in runs if r["index"] == index}
+            if len(plans) != 1:
+                raise SystemExit(f"stress floor {index}: the cell size changed the plan ({plans})")
+    else:
+        result["met"] = all(
+            r["found"] and r["seconds"] <= TARGET_SECONDS and r["peak_rss_mb"] <= TARGET_MB for r in runs
+        )
     if args.out:
         Path(args.out).write_text(json.dumps(result, indent=1) + "\n", encoding="utf-8")
     return result

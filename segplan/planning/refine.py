@@ -390,8 +390,9 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     A link fails for certain if its rear path's curvature, sampled at ``SAMPLES``
     abscissae, exceeds the steering limit, or if a sampled point of the swept segment
     (rear point, middle, front wheel) lies outside the free bounds or strictly inside an
-    enlarged obstacle. The converse does not hold: a link with no certain failure must
-    still be checked (:meth:`segplan.planning.validity.Workspace.union_free`).
+    enlarged obstacle (:meth:`segplan.planning.validity.Workspace.inside`). The converse
+    does not hold: a link with no certain failure must still be checked
+    (:meth:`segplan.planning.validity.Workspace.union_free`).
 
     Parameters
     ----------
@@ -416,21 +417,5 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     if ws.bounds is not None:
         xmin, ymin, xmax, ymax = ws.bounds
         bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
-    # only the obstacles whose box meets the samples' box can hold a sample (large floors)
-    bb = ws.box_array
-    lo_x, hi_x, lo_y, hi_y = wx.min(), wx.max(), wy.min(), wy.max()
-    meet = (bb[:, 0] < hi_x) & (bb[:, 2] > lo_x) & (bb[:, 1] < hi_y) & (bb[:, 3] > lo_y)
-    for i in np.flatnonzero(meet).tolist():
-        poly, (x0, y0, x1, y1) = ws.convex[i], ws.boxes[i]
-        near = (wx > x0) & (wx < x1) & (wy > y0) & (wy < y1)  # inside the box: worth the edges
-        if not near.any():
-            continue
-        k, j = np.nonzero(near)
-        px, py = wx[k, j], wy[k, j]
-        g = (
-            np.multiply.outer(px, poly.normals[:, 0])
-            + np.multiply.outer(py, poly.normals[:, 1])
-            - poly.offsets
-        )
-        bad[k[np.all(g < 0.0, axis=1)]] = True  # strictly inside every edge
+    bad |= np.any(ws.inside(wx, wy), axis=1)
     return bad
