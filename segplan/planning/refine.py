@@ -272,16 +272,33 @@ class _Refiner:
             return nodes, kinds
         P = np.array(nodes, dtype=float)
         I, J = np.triu_indices(n, k=2)
+        screened = self.screen(P[I], P[J])
+        finite = np.isfinite(screened)
         guess = dict(
-            zip(zip(I.tolist(), J.tolist(), strict=True), self.screen(P[I], P[J]).tolist(), strict=True)
+            zip(
+                zip(I[finite].tolist(), J[finite].tolist(), strict=True),
+                screened[finite].tolist(),
+                strict=True,
+            )
         )
+        # the links into each node that may join a chain: screened finite, or checked (a
+        # checked link's cost replaces its screen); one of cost inf never lowers a chain's, so
+        # the shortest chain over these is the one over all the links (ties: the lowest i)
+        at: dict = {}
+        for k, p in enumerate(nodes):
+            at.setdefault(p, []).append(k)
+        pairs = set(guess)
+        pairs.update((i, j) for a, b in self.known for i in at.get(a, ()) for j in at.get(b, ()) if i < j)
+        into: list = [[] for _ in range(n)]
+        for i, j in sorted(pairs):
+            into[j].append(i)
         while True:
             best = [0.0] + [math.inf] * (n - 1)
             prev = [-1] * n
             for j in range(1, n):
-                for i in range(j):
+                for i in into[j]:
                     key = (nodes[i], nodes[j])
-                    c = self.known[key][1] if key in self.known else guess.get((i, j), math.inf)
+                    c = self.known[key][1] if key in self.known else guess[(i, j)]
                     if best[i] + c < best[j]:
                         best[j], prev[j] = best[i] + c, i
             chain = [n - 1]
