@@ -6,7 +6,8 @@ A shorter chain usually exists nearby. :func:`refine` looks for it with the pape
 pieces (cubic unions in their optimal reference system, the LONGD cost, the on-line
 collision test), in three steps repeated ``rounds`` times:
 
-1. **Shortcuts.** Every pair of nodes ``i < j`` of the chain may be joined directly; the
+1. **Shortcuts.** Every pair of nodes ``i < j`` of the chain at most ``max_chord * L``
+   apart may be joined directly (and every pair whose link was checked before); the
    cheapest chain over those links (a shortest path in a small acyclic graph) is kept.
    Links are screened by their cost in the heuristic frame, vectorised, and only the
    links of a best chain are checked (union, steering limit, walls, obstacles), until a
@@ -272,6 +273,9 @@ class _Refiner:
             return nodes, kinds
         P = np.array(nodes, dtype=float)
         I, J = np.triu_indices(n, k=2)
+        if self.options.max_chord is not None:
+            near = np.hypot(P[J, 0] - P[I, 0], P[J, 1] - P[I, 1]) <= self.options.max_chord * self.L
+            I, J = I[near], J[near]
         screened = self.screen(P[I], P[J])
         finite = np.isfinite(screened)
         guess = dict(
