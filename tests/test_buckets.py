@@ -106,6 +106,7 @@ def big_workspace(cell=None):
         if cell is not None:
             validity.BoxGrid = lambda boxes: original(boxes, cell)
         ws = Workspace(sc.enlarged, r.L, sc.free_bounds, r.max_curvature)
+        ws.index  # noqa: B018 (the grid is built at its first use: here, patched)
     finally:
         validity.BoxGrid = original
     assert cell is None or ws.index.size == cell

@@ -25,6 +25,7 @@ instance's own store; no module-level cache).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -208,21 +209,22 @@ class Workspace:
         # :meth:`inside`
         self._normal_array = _padded([c.normals for c in self.convex], k, 2)
         self._offset_array = _padded([c.offsets for c in self.convex], k)
-        #: The obstacles filed by the cells of a grid (:class:`segplan.floor.buckets.BoxGrid`),
-        #: each under the box that holds its bounding box and its circle: a query returns
-        #: every obstacle whose polygon or circle may meet the region asked about.
-        self.index = BoxGrid(
-            np.column_stack(
-                (
-                    np.minimum(self._circle_array[:, :2] - self._circle_array[:, 2:], self.box_array[:, :2]),
-                    np.maximum(self._circle_array[:, :2] + self._circle_array[:, 2:], self.box_array[:, 2:]),
-                )
-            )
-        )
         # vertices as Python floats, for the scalar broad phase of :meth:`colliding`
         self._vertex_lists = [[(float(x), float(y)) for x, y in p] for p in self.polygons]
         # boxes and unit edge normals as Python floats, for the scalar :meth:`pose_free`
         self._edge_lists = [edge_list(c) for c in self.convex]
+
+    @functools.cached_property
+    def index(self) -> BoxGrid:
+        """The obstacles filed by the cells of a grid (:class:`segplan.floor.buckets.BoxGrid`),
+        each under the box that holds its bounding box and its circle: a query returns every
+        obstacle whose polygon or circle may meet the region asked about. Built at its first
+        use (floors of more than ``VECTOR_SCREEN_MIN`` obstacles; a few hundred microseconds
+        that a small floor's plan would not use)."""
+        C, B = self._circle_array, self.box_array
+        lo = np.minimum(C[:, :2] - C[:, 2:], B[:, :2])
+        hi = np.maximum(C[:, :2] + C[:, 2:], B[:, 2:])
+        return BoxGrid(np.column_stack((lo, hi)))
 
     # -- poses -------------------------------------------------------------------------
     def pose_free(self, pose) -> bool:
@@ -347,8 +349,8 @@ class Workspace:
         """Which points lie strictly inside an obstacle (vectorised).
 
         Each point against the obstacles filed under its cell (:attr:`index`: every one
-        whose bounding box holds it): strictly inside the box, then strictly inside every
-        edge (``n . p - h < 0``).
+        whose bounding box holds it; up to ``VECTOR_SCREEN_MIN`` obstacles, against every
+        one): strictly inside the box, then strictly inside every edge (``n . p - h < 0``).
 
         Parameters
         ----------
@@ -363,10 +365,15 @@ class Workspace:
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         out = np.zeros(x.size, dtype=bool)
         px, py = x.ravel(), y.ravel()
-        p, i = self.index.pairs(px, py)
-        px, py, bb = px[p], py[p], self.box_array[i]
-        box = (px > bb[:, 0]) & (px < bb[:, 2]) & (py > bb[:, 1]) & (py < bb[:, 3])
-        p, i, px, py = p[box], i[box], px[box], py[box]
+        if len(self.convex) > VECTOR_SCREEN_MIN:
+            p, i = self.index.pairs(px, py)
+            px, py, bb = px[p], py[p], self.box_array[i]
+            box = (px > bb[:, 0]) & (px < bb[:, 2]) & (py > bb[:, 1]) & (py < bb[:, 3])
+            p, i, px, py = p[box], i[box], px[box], py[box]
+        else:  # a few obstacles: the same box test on every pair, without the index's bookkeeping
+            bb, qx, qy = self.box_array, px[:, None], py[:, None]
+            p, i = np.nonzero((qx > bb[:, 0]) & (qx < bb[:, 2]) & (qy > bb[:, 1]) & (qy < bb[:, 3]))
+            px, py = px[p], py[p]
         N = self._normal_array[i]
         g = px[:, None] * N[:, :, 0] + py[:, None] * N[:, :, 1] - self._offset_array[i]
         out[p[np.all(g < 0.0, axis=1)]] = True
