@@ -98,8 +98,8 @@ MUTATIONS = (
     Mutation(
         "certain_failures_never",
         "segplan/planning/refine.py",
-        "= True  # strictly inside every edge\n    return bad",
-        "= True  # strictly inside every edge\n    return bad & False",
+        "    bad |= np.any(ws.inside(wx, wy), axis=1)\n    return bad",
+        "    bad |= np.any(ws.inside(wx, wy), axis=1)\n    return bad & False",
         REFINE_TESTS,
         "certain_failures flags nothing",
     ),

@@ -87,7 +87,7 @@ TARGETS = {
         "tests/test_search_oracles.py",
         "tests/test_search.py",  # the link observer
     ],
-    "planning/refine": ["tests/test_refine_oracles.py", "tests/test_refine.py"],
+    "planning/refine": ["tests/test_refine_oracles.py", "tests/test_refine.py", "tests/test_buckets.py"],
     # collision
     "planning/validity": [
         "tests/test_expansion.py",
@@ -97,6 +97,8 @@ TARGETS = {
         "tests/test_search_oracles.py::test_collision_counters_pinned",  # the shortcuts' counters
         # the broad phase of many obstacles (arrays) against the scalar loop
         "tests/test_lattice_enclosure.py::test_vectorised_broad_phase_decides_as_the_scalar_loop",
+        # the obstacles' index and the tests that read it, against brute force (issue 25)
+        "tests/test_buckets.py",
     ],
     # issue 24: the rest of planning/ -- entry points, options and the default pipeline
     "planning/api": [
@@ -177,6 +179,7 @@ TARGETS = {
     "planning/lattice/shortcut": LATTICE,
     "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
+    "floor/buckets": ["tests/test_buckets.py"],
     "floor/geometry": [
         "tests/test_geometry.py",
         "tests/test_collision.py",

@@ -120,8 +120,9 @@ def test_check_limits():
 
 
 def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
-    """Above VECTOR_SCREEN_MIN obstacles colliding() and pose_free() screen with arrays: the
-    same answers, cache entries and broad-phase counts as the scalar loops."""
+    """Above VECTOR_SCREEN_MIN obstacles colliding() and pose_free() screen with arrays (on
+    the obstacles the workspace's index files nearby): the same answers, obstacles kept and
+    broad-phase counts as the scalar loops."""
     from segplan.model.pose import Pose
     from segplan.planning import validity
     from segplan.planning.links import LinkModel
@@ -142,7 +143,8 @@ def test_vectorised_broad_phase_decides_as_the_scalar_loop(monkeypatch):
         for a, b in zip(poses[:-1], poses[1:], strict=True):
             u = links.union(a, Pose(a.x + (b.x - a.x) * 0.2, a.y + (b.y - a.y) * 0.2, b.theta))
             if u is not None:
-                out.append((ws.colliding(u, first=False), sorted(ws.facts(u).near.items())))
+                kept = sorted((i, v) for i, v in ws.facts(u).near.items() if v is not None)
+                out.append((ws.colliding(u, first=False), kept))
         return out, ws.stats.broad_rejections
 
     def some_first():  # a few obstacles asked about first: the broad phase then skips them

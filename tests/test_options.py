@@ -114,6 +114,8 @@ def test_refine_options_are_refines_defaults():
         (RefineOptions, {"max_sweeps": True}, "max_sweeps"),
         (RefineOptions, {"min_gain": -1e-3}, "min_gain"),
         (RefineOptions, {"checks_per_update": 0}, "checks_per_update"),
+        (RefineOptions, {"max_chord": 0.0}, "max_chord"),
+        (RefineOptions, {"max_chord": math.inf}, "max_chord"),
         (RefineOptions, {"moves": ()}, "moves"),
         (RefineOptions, {"moves": ((1, 0),)}, "moves"),
         (DefaultOptions, {"paper_share": 0.0}, "paper_share"),

@@ -93,6 +93,26 @@ def test_rounds_zero_only_shortcuts(plans):
     assert short.cost <= found.cost
 
 
+def test_shortcuts_within_max_chord(plans):
+    """Shortcuts join nodes at most ``max_chord * L`` apart, and every link checked before:
+    with a bound shorter than every chord none is taken; with one longer than the floor,
+    the chain of no bound (None), bit for bit."""
+    from segplan.planning.links import LinkModel
+    from segplan.planning.options import RefineOptions
+    from segplan.planning.refine import refine_with
+
+    sc, found, _ = plans["fig6_example2"]
+
+    def shortcuts(max_chord):
+        ws = Workspace(sc.enlarged, sc.robot.L, sc.free_bounds, sc.robot.max_curvature)
+        return refine_with(found, LinkModel(ws), RefineOptions(rounds=0, max_chord=max_chord))
+
+    free = shortcuts(None)
+    assert free.refinement.shortcuts > 0
+    assert shortcuts(1e-6).nodes == found.nodes  # only the plan's own (checked) links
+    assert shortcuts(100.0).nodes == free.nodes and shortcuts(100.0).cost == free.cost
+
+
 @settings(max_examples=12)
 @given(seed=st.integers(0, 10_000), n=st.integers(2, 6))
 def test_random_worlds(seed, n):

@@ -111,6 +111,21 @@ class RefineOptions:
         Moves of a node in its own frame, in units of its step (turns in units of
         ``step / L`` radians): forward/back, left/right, turning left/right and the four
         combinations of a sideways move with a turn. Set by hand in 2eed598; not measured.
+    max_chord : float or None
+        Shortcuts consider the links between nodes at most ``max_chord * L`` apart (and
+        every link checked before, whatever its length); None: every pair of nodes. 64:
+        measured on 2026-12-03 (stress floors by ``benchmarks/stress_floor.py``'s floors, the
+        others by the default planner with a 300 s limit, each plan's refinements under
+        bounds of 16-64 L and None): on the 1 km stress floors 0-2 without a bound the
+        refinement checked 2397-2792 links, 1156 of those of floor 0 longer than 80 L and
+        none of them free (the longest free link of its shortcuts: 66 L), in 3.1-4.2 s of
+        CPU; with 64 L 1188-1360 links in 0.52-0.71 s, the plans the same or at most
+        0.00013 % longer (32 L: up to 0.02 %, 16 L: up to 0.1 %). On 10 large sites
+        (``floor_kinds`` "large" 0-11; 8 and 10 have no plan) and 6 floors of 160 x 96 m
+        with 512 obstacles (``plan_speed.py --large`` seeds 0-5) the refined plans were the
+        same lengths with 48 L and 64 L (32 L: up to 0.17 % longer, 16 L: up to 5.7 %); on
+        the 490 floors of ``benchmarks/same_plans.py`` (diagonals of 33 L at most) the bound
+        never acts: every plan is the same, bit for bit.
     """
 
     rounds: int = 1
@@ -132,6 +147,7 @@ class RefineOptions:
         (0, -1, 1),
         (0, -1, -1),
     )
+    max_chord: float | None = 64.0
 
     def __post_init__(self):
         _set(self, "rounds", check_option(self.rounds, "rounds", 0, integer=True, lo_ok=True))
@@ -141,6 +157,7 @@ class RefineOptions:
         if self.min_step > self.first_step:
             raise ValueError(f"min_step ({self.min_step!r}) must not exceed first_step ({self.first_step!r})")
         _set(self, "min_gain", check_option(self.min_gain, "min_gain (units of L)", 0.0, lo_ok=True))
+        _set(self, "max_chord", check_option(self.max_chord, "max_chord (units of L)", 0.0, allow_none=True))
         _set(
             self,
             "checks_per_update",

@@ -6,7 +6,8 @@ A shorter chain usually exists nearby. :func:`refine` looks for it with the pape
 pieces (cubic unions in their optimal reference system, the LONGD cost, the on-line
 collision test), in three steps repeated ``rounds`` times:
 
-1. **Shortcuts.** Every pair of nodes ``i < j`` of the chain may be joined directly; the
+1. **Shortcuts.** Every pair of nodes ``i < j`` of the chain at most ``max_chord * L``
+   apart may be joined directly (and every pair whose link was checked before); the
    cheapest chain over those links (a shortest path in a small acyclic graph) is kept.
    Links are screened by their cost in the heuristic frame, vectorised, and only the
    links of a best chain are checked (union, steering limit, walls, obstacles), until a
@@ -272,16 +273,36 @@ class _Refiner:
             return nodes, kinds
         P = np.array(nodes, dtype=float)
         I, J = np.triu_indices(n, k=2)
+        if self.options.max_chord is not None:
+            near = np.hypot(P[J, 0] - P[I, 0], P[J, 1] - P[I, 1]) <= self.options.max_chord * self.L
+            I, J = I[near], J[near]
+        screened = self.screen(P[I], P[J])
+        finite = np.isfinite(screened)
         guess = dict(
-            zip(zip(I.tolist(), J.tolist(), strict=True), self.screen(P[I], P[J]).tolist(), strict=True)
+            zip(
+                zip(I[finite].tolist(), J[finite].tolist(), strict=True),
+                screened[finite].tolist(),
+                strict=True,
+            )
         )
+        # the links into each node that may join a chain: screened finite, or checked (a
+        # checked link's cost replaces its screen); one of cost inf never lowers a chain's, so
+        # the shortest chain over these is the one over all the links (ties: the lowest i)
+        at: dict = {}
+        for k, p in enumerate(nodes):
+            at.setdefault(p, []).append(k)
+        pairs = set(guess)
+        pairs.update((i, j) for a, b in self.known for i in at.get(a, ()) for j in at.get(b, ()) if i < j)
+        into: list = [[] for _ in range(n)]
+        for i, j in sorted(pairs):
+            into[j].append(i)
         while True:
             best = [0.0] + [math.inf] * (n - 1)
             prev = [-1] * n
             for j in range(1, n):
-                for i in range(j):
+                for i in into[j]:
                     key = (nodes[i], nodes[j])
-                    c = self.known[key][1] if key in self.known else guess.get((i, j), math.inf)
+                    c = self.known[key][1] if key in self.known else guess[(i, j)]
                     if best[i] + c < best[j]:
                         best[j], prev[j] = best[i] + c, i
             chain = [n - 1]
@@ -390,8 +411,9 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     A link fails for certain if its rear path's curvature, sampled at ``SAMPLES``
     abscissae, exceeds the steering limit, or if a sampled point of the swept segment
     (rear point, middle, front wheel) lies outside the free bounds or strictly inside an
-    enlarged obstacle. The converse does not hold: a link with no certain failure must
-    still be checked (:meth:`segplan.planning.validity.Workspace.union_free`).
+    enlarged obstacle (:meth:`segplan.planning.validity.Workspace.inside`). The converse
+    does not hold: a link with no certain failure must still be checked
+    (:meth:`segplan.planning.validity.Workspace.union_free`).
 
     Parameters
     ----------
@@ -416,21 +438,5 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     if ws.bounds is not None:
         xmin, ymin, xmax, ymax = ws.bounds
         bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
-    # only the obstacles whose box meets the samples' box can hold a sample (large floors)
-    bb = ws.box_array
-    lo_x, hi_x, lo_y, hi_y = wx.min(), wx.max(), wy.min(), wy.max()
-    meet = (bb[:, 0] < hi_x) & (bb[:, 2] > lo_x) & (bb[:, 1] < hi_y) & (bb[:, 3] > lo_y)
-    for i in np.flatnonzero(meet).tolist():
-        poly, (x0, y0, x1, y1) = ws.convex[i], ws.boxes[i]
-        near = (wx > x0) & (wx < x1) & (wy > y0) & (wy < y1)  # inside the box: worth the edges
-        if not near.any():
-            continue
-        k, j = np.nonzero(near)
-        px, py = wx[k, j], wy[k, j]
-        g = (
-            np.multiply.outer(px, poly.normals[:, 0])
-            + np.multiply.outer(py, poly.normals[:, 1])
-            - poly.offsets
-        )
-        bad[k[np.all(g < 0.0, axis=1)]] = True  # strictly inside every edge
+    bad |= np.any(ws.inside(wx, wy), axis=1)
     return bad

@@ -11,7 +11,13 @@ section "Collision-detection algorithm"):
   (through :meth:`segplan.Union.max_curvature`, the one exact maximum);
 * :meth:`Workspace.in_bounds`, :meth:`Workspace.colliding`: the swept segment against the
   walls and the obstacles (:mod:`segplan.floor.collision`);
-* :meth:`Workspace.union_free`: all of these.
+* :meth:`Workspace.union_free`: all of these;
+* :meth:`Workspace.inside`: which sample points lie strictly inside an obstacle (the
+  refinement's screen).
+
+On large floors only the obstacles near the region asked about are examined: the workspace
+files them in a grid of buckets (:class:`segplan.floor.buckets.BoxGrid`, :attr:`Workspace.index`),
+which returns every obstacle a test could keep, so the tests decide as they would over all.
 
 Answers about a union are kept per union only when the caller asks (``cache=True``, an
 instance's own store; no module-level cache).
@@ -19,11 +25,13 @@ instance's own store; no module-level cache).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..floor.buckets import BoxGrid
 from ..floor.collision import CollisionStats, collides, sweep_in_bounds
 from ..floor.geometry import (
     ConvexPolygon,
@@ -103,21 +111,39 @@ class _Facts:
     the caller asks (``Workspace(..., cache=True)``, the default of the planner).
     """
 
-    __slots__ = ("union", "sweep", "curvature", "in_bounds", "near", "hits", "samples")
+    __slots__ = ("union", "sweep", "curvature", "in_bounds", "near", "swept", "hits", "samples")
 
     def __init__(self, union: Union):
         self.union = union  # keeps the union alive, so its id is not reused while cached
         self.sweep = None
         self.curvature = None
         self.in_bounds = None
-        self.near: dict = {}  # polygon -> frame abscissa of its nearest vertex, None if rejected
+        # the broad phase's decisions: polygon -> frame abscissa of its nearest vertex if kept,
+        # None if rejected; once ``swept``, every polygon is decided and those absent are rejected
+        self.near: dict = {}
+        self.swept = False
         self.hits: dict = {}  # polygon -> touched
         self.samples = None
 
 
+#: Margin of the index's queries (:attr:`Workspace.index`) relative to the coordinates'
+#: magnitude: far above the rounding of the tests they stand for (a few ulps, ~1e-15), so a
+#: query returns every obstacle those tests could keep.
+_ROUNDING = 1e-9
+
 #: Obstacles above which :meth:`Workspace.colliding` and :meth:`Workspace.pose_free` pre-screen
 #: them with arrays (large floors; below, the scalar loops alone, as before).
 VECTOR_SCREEN_MIN = 64
+
+
+def _padded(rows: list, k: int, *tail: int) -> np.ndarray:
+    """Arrays of shape ``(m, *tail)``, ``m <= k``, stacked as ``(len(rows), k, *tail)``, each
+    padded with copies of its first row."""
+    out = np.empty((len(rows), k, *tail), dtype=float)
+    for i, a in enumerate(rows):
+        out[i, : len(a)] = a
+        out[i, len(a) :] = a[0]
+    return out
 
 
 class Workspace:
@@ -145,7 +171,9 @@ class Workspace:
     more time-consuming routines are executed"):
 
     1. all obstacles at once: the frame bounding box of each polygon against the frame
-       box of the swept segment (:class:`segplan.floor.sweep.Sweep`), one vectorised step;
+       box of the swept segment (:class:`segplan.floor.sweep.Sweep`), one vectorised step
+       over the obstacles filed near it (:attr:`index`; above ``VECTOR_SCREEN_MIN``
+       obstacles);
     2. a *certain hit*: a sample of the swept segment (rear point, front wheel and
        middle of the robot at ``HIT_SAMPLES`` positions) strictly inside the polygon;
     3. :func:`segplan.floor.collision.collides` (the paper's ``d_c`` rejection, then the exact
@@ -172,13 +200,15 @@ class Workspace:
         # floating-point operations as the scalar loop, so the same decisions)
         self._circle_array = np.array(self._circles, dtype=float).reshape(-1, 3)
         k = max((len(p) for p in self.polygons), default=1)
-        self._vertex_array = np.array(
-            [np.concatenate((p, np.repeat(p[:1], k - len(p), axis=0))) for p in self.polygons], dtype=float
-        ).reshape(-1, k, 2)
+        self._vertex_array = _padded(self.polygons, k, 2)
         #: Bounding boxes ``(xmin, ymin, xmax, ymax)`` of the obstacles (Python floats).
         self.boxes = [c.box for c in self.convex]
         #: The same bounding boxes as an ``(n, 4)`` array (for vectorised screens).
         self.box_array = np.array(self.boxes, dtype=float).reshape(-1, 4)
+        # the edges' normals and offsets padded the same way (the first edge repeated), for
+        # :meth:`inside`
+        self._normal_array = _padded([c.normals for c in self.convex], k, 2)
+        self._offset_array = _padded([c.offsets for c in self.convex], k)
         # vertices as Python floats, for the scalar broad phase of :meth:`colliding`
         self._vertex_lists = [[(float(x), float(y)) for x, y in p] for p in self.polygons]
         # boxes and unit edge normals as Python floats, for the scalar :meth:`pose_free`
@@ -191,6 +221,18 @@ class Workspace:
         self.stats = ExpansionStats()
         self.collision_stats = CollisionStats()
         self._facts.clear()
+
+    @functools.cached_property
+    def index(self) -> BoxGrid:
+        """The obstacles filed by the cells of a grid (:class:`segplan.floor.buckets.BoxGrid`),
+        each under the box that holds its bounding box and its circle: a query returns every
+        obstacle whose polygon or circle may meet the region asked about. Built at its first
+        use (floors of more than ``VECTOR_SCREEN_MIN`` obstacles; a few hundred microseconds
+        that a small floor's plan would not use)."""
+        C, B = self._circle_array, self.box_array
+        lo = np.minimum(C[:, :2] - C[:, 2:], B[:, :2])
+        hi = np.maximum(C[:, :2] + C[:, 2:], B[:, 2:])
+        return BoxGrid(np.column_stack((lo, hi)))
 
     # -- poses -------------------------------------------------------------------------
     def pose_free(self, pose) -> bool:
@@ -211,11 +253,14 @@ class Workspace:
             # an obstacle whose circle is farther than the segment's half-length + L / 10
             # from its middle is left out: the scalar test could not find it touching (its
             # tolerance is ~1e-9 of the scene; a separating axis leaves a gap of at least
-            # L / 10 times the sine of half the polygon's sharpest angle)
-            C = self._circle_array
+            # L / 10 times the sine of half the polygon's sharpest angle); only obstacles filed
+            # near the middle can be that close (the index; its margin covers the rounding)
             mx, my = x + 0.5 * dx, y + 0.5 * dy
+            a = 0.6 * L + 1e-6 + _ROUNDING * (1.0 + abs(mx) + abs(my) + L)
+            S = self.index.query(mx - a, my - a, mx + a, my + a)
+            C = self._circle_array[S]
             reach = C[:, 2] + 0.6 * L + 1e-6
-            near = np.flatnonzero((C[:, 0] - mx) ** 2 + (C[:, 1] - my) ** 2 <= reach * reach).tolist()
+            near = S[(C[:, 0] - mx) ** 2 + (C[:, 1] - my) ** 2 <= reach * reach].tolist()
         else:
             near = range(len(self.convex))
         for i in near:
@@ -308,6 +353,40 @@ class Workspace:
         fy = np.concatenate((fx, fx + 0.5 * L * uy, fx + L * uy))
         return sw.x0 + sw.cos * fr - sw.sin * fy, sw.y0 + sw.sin * fr + sw.cos * fy
 
+    def inside(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """Which points lie strictly inside an obstacle (vectorised).
+
+        Each point against the obstacles filed under its cell (:attr:`index`: every one
+        whose bounding box holds it; up to ``VECTOR_SCREEN_MIN`` obstacles, against every
+        one): strictly inside the box, then strictly inside every edge (``n . p - h < 0``).
+
+        Parameters
+        ----------
+        x, y : ndarray
+            Coordinates of the points (one shape).
+
+        Returns
+        -------
+        ndarray of bool
+            Of that shape.
+        """
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        out = np.zeros(x.size, dtype=bool)
+        px, py = x.ravel(), y.ravel()
+        if len(self.convex) > VECTOR_SCREEN_MIN:
+            p, i = self.index.pairs(px, py)
+            px, py, bb = px[p], py[p], self.box_array[i]
+            box = (px > bb[:, 0]) & (px < bb[:, 2]) & (py > bb[:, 1]) & (py < bb[:, 3])
+            p, i, px, py = p[box], i[box], px[box], py[box]
+        else:  # a few obstacles: the same box test on every pair, without the index's bookkeeping
+            bb, qx, qy = self.box_array, px[:, None], py[:, None]
+            p, i = np.nonzero((qx > bb[:, 0]) & (qx < bb[:, 2]) & (qy > bb[:, 1]) & (qy < bb[:, 3]))
+            px, py = px[p], py[p]
+        N = self._normal_array[i]
+        g = px[:, None] * N[:, :, 0] + py[:, None] * N[:, :, 1] - self._offset_array[i]
+        out[p[np.all(g < 0.0, axis=1)]] = True
+        return out.reshape(x.shape)
+
     def _certain_hit(self, wx: np.ndarray, wy: np.ndarray, i: int) -> bool:
         """A sample point strictly inside polygon ``i``: a collision for certain."""
         c = self.convex[i]
@@ -335,13 +414,13 @@ class Workspace:
         c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
         candidates = range(len(self.polygons)) if only is None else only
         if only is None and len(self.polygons) > VECTOR_SCREEN_MIN:
-            near = self._broad_phase(known, sw)
+            near = self._broad_phase(facts, sw)
             candidates = ()
         else:
             near = []
         for i in candidates:
-            if i in known:  # decided by the broad phase before (pairs are counted once)
-                if known[i] is not None:
+            if i in known or facts.swept:  # decided by the broad phase before (counted once)
+                if known.get(i) is not None:
                     near.append((known[i], i))
                 continue
             known[i] = None
@@ -391,21 +470,30 @@ class Workspace:
                     break
         return out
 
-    def _broad_phase(self, known: dict, sw) -> list:
+    def _broad_phase(self, facts: _Facts, sw) -> list:
         """The scalar broad phase of :meth:`colliding` over every obstacle, vectorised.
 
-        The same floating-point operations on arrays (circle against the frame box, then
-        the polygon's frame box), so the same decisions, cache entries and counts.
+        Only the obstacles filed (:attr:`index`) near the world box of the swept segment's
+        frame box are examined: an obstacle whose circle meets that frame box has its
+        circle's box meeting the frame box's world box, so every other one would fail the
+        circle test. On those, the scalar loop's floating-point operations on arrays (circle
+        against the frame box, then the polygon's frame box): the same decisions, cache
+        entries and counts. Afterwards every obstacle is decided (``facts.swept``); the
+        rejected ones are not stored.
         """
+        known = facts.near
+        near = [(v, i) for i, v in known.items() if v is not None]
+        if facts.swept:
+            return near
         x0, x1, y0, y1 = sw.box
         c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
-        near = [(v, i) for i, v in known.items() if v is not None]
-        unseen = np.ones(len(self.polygons), dtype=bool)
+        # the frame box's corners in the world, and their box grown by the rounding margin
+        wx = [ox + c * fx - s * fy for fx in (x0, x1) for fy in (y0, y1)]
+        wy = [oy + s * fx + c * fy for fx in (x0, x1) for fy in (y0, y1)]
+        m = _ROUNDING * (1.0 + max(map(abs, wx + wy)))
+        U = self.index.query(min(wx) - m, min(wy) - m, max(wx) + m, max(wy) + m)
         if known:
-            unseen[np.fromiter(known, dtype=np.int64, count=len(known))] = False
-        U = np.flatnonzero(unseen)
-        if not len(U):
-            return near
+            U = U[[i not in known for i in U.tolist()]]
         C = self._circle_array[U]
         dx, dy = C[:, 0] - ox, C[:, 1] - oy
         fx, fy = c * dx + s * dy, c * dy - s * dx
@@ -418,8 +506,9 @@ class Workspace:
         px, py = c * vx + s * vy, c * vy - s * vx
         px_min = px.min(axis=1)
         keep = ~((px.max(axis=1) < x0) | (px_min > x1) | (py.max(axis=1) < y0) | (py.min(axis=1) > y1))
-        self.stats.broad_rejections += len(U) - int(keep.sum())
-        known.update(dict.fromkeys(U.tolist()))
+        # the undecided obstacles, less those kept, are rejected (most without being examined)
+        self.stats.broad_rejections += len(self.polygons) - len(known) - int(keep.sum())
+        facts.swept = True
         for i, v in zip(S[keep].tolist(), px_min[keep].tolist(), strict=True):
             known[i] = v
             near.append((v, i))

@@ -332,8 +332,10 @@ def _boxes_meeting(ws, x0: float, y0: float, x1: float, y1: float, margin: float
     x0, x1, y0, y1 = x0 - margin, x1 + margin, y0 - margin, y1 + margin
     if len(bb) <= 32:  # a few obstacles: Python floats beat numpy's per-call overhead
         return [k for k, b in enumerate(ws.boxes) if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0]
+    S = ws.index.query(x0, y0, x1, y1)  # every obstacle whose box meets it, and a few others
+    bb = bb[S]
     hit = (bb[:, 0] <= x1) & (bb[:, 2] >= x0) & (bb[:, 1] <= y1) & (bb[:, 3] >= y0)
-    return np.flatnonzero(hit).tolist()
+    return S[hit].tolist()
 
 
 def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -> tuple[bool, int]:

@@ -417,8 +417,8 @@ class Expander:
                 return "curvature_out"
             if self.ws.colliding(u_out, only=(polygon,)):
                 return "collision"
-        others = [i for i in range(len(self.ws.polygons)) if i != polygon]
-        blocked = not self.ws.in_bounds(u_in) or bool(self.ws.colliding(u_in, only=others))
+        # start->pose is free of ``polygon`` (above): it hits another obstacle iff it hits any
+        blocked = not self.ws.in_bounds(u_in) or bool(self.ws.colliding(u_in))
         return u_in, u_out, blocked
 
     def turn_states(self, node: Pose) -> list[Pose]:
