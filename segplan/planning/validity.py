@@ -477,9 +477,9 @@ class Workspace:
         frame box are examined: an obstacle whose circle meets that frame box has its
         circle's box meeting the frame box's world box, so every other one would fail the
         circle test. On those, the scalar loop's floating-point operations on arrays (circle
-        against the frame box, then the polygon's frame box): the same decisions, cache
-        entries and counts. Afterwards every obstacle is decided (``facts.swept``); the
-        rejected ones are not stored.
+        against the frame box, then the polygon's frame box): the same decisions and counts.
+        Afterwards every obstacle is decided (``facts.swept``); the kept ones are stored,
+        the rejected ones are not.
         """
         known = facts.near
         near = [(v, i) for i, v in known.items() if v is not None]
