@@ -31,10 +31,8 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import datetime
 import json
 import os
-import platform
 import resource
 import subprocess
 import sys
@@ -113,38 +111,14 @@ def one(index: int, cells_per_box: float | None) -> dict:
 
 
 def provenance(argv: list[str]) -> dict:
-    """When, where and at which commit: date (UTC), machine, load, nice, commit, clean tree."""
+    """When, where and at which commit (:func:`segplan.studies.ompl_runner.provenance`, the
+    studies' one record, without its OMPL fields)."""
+    from segplan.studies import ompl_runner
 
-    def git(*args: str) -> str:
-        return subprocess.run(
-            ["git", *args], cwd=ROOT, capture_output=True, text=True, check=False
-        ).stdout.strip()
-
-    return {
-        "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
-        "machine": {
-            "system": f"{platform.system()} {platform.release()}",
-            "arch": platform.machine(),
-            "processor": _cpu_model(),
-            "cores": os.cpu_count(),
-            "load_average_before": [round(x, 2) for x in os.getloadavg()],
-            "nice": os.nice(0),
-        },
-        "python": platform.python_version(),
-        "commit": git("rev-parse", "HEAD"),
-        "tree_clean": git("status", "--porcelain", "--untracked-files=no") == "",
-        "command": " ".join(["python", *argv]),
-    }
-
-
-def _cpu_model() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor()
+    meta = ompl_runner.provenance(argv, None, None)
+    for key in ("fairness", "simplifier", "ompl", "jobs", "config", "harness_version"):
+        meta.pop(key, None)
+    return meta
 
 
 def child(index: int, cells_per_box: float | None) -> dict:
