@@ -301,16 +301,10 @@ def test_improve_with_arcs_returns_a_plan_near_the_dubins_length_unchanged():
 # -- 4. the coarse cost-to-go -----------------------------------------------------------------
 def _field(sc, cells=2):
     """The HeadingField (cell ``L / cells``) of a scenario, on a clearance grid built as the
-    lattice search builds it."""
-    L, R_ = sc.robot.L, sc.robot.min_turning_radius
-    ws = _workspace(sc)
-    cell = L / 16
-    pad = int(math.ceil(max_reach(L, sc.robot.max_steer, L / 8) / cell)) + 2
-    grid = ClearanceGrid(ws.convex, tuple(sc.start), sc.free_bounds, cell, pad, sc.goal, 4 * L + 4 * R_)
-    gx, gy = grid.to_lattice(np.array([sc.goal[:2]]))[0]
-    goal_l = (gx, gy, math.remainder(sc.goal.theta - sc.start.theta, 2 * math.pi))
-    rc = HeadingField.resolution(grid, L, cells)
-    assert rc == L / cells
+    lattice search builds it (:func:`_grid_of`)."""
+    grid, goal_l = _grid_of(sc)
+    rc = HeadingField.resolution(grid, sc.robot.L, cells)
+    assert rc == sc.robot.L / cells
     return HeadingField(grid, sc.robot, goal_l, rc), goal_l
 
 
@@ -475,6 +469,8 @@ def test_the_guide_solves_any_6_in_few_expansions():
 
 # -- 5. the guide's window on floors too large for a whole-grid guide --------------------------
 def _grid_of(sc):
+    """The clearance grid of a scenario as the lattice search lays it out, and the goal in
+    the lattice frame."""
     L, R_ = sc.robot.L, sc.robot.min_turning_radius
     ws = _workspace(sc)
     cell = L / 16

@@ -238,45 +238,15 @@ def plan_scenario(
 
 
 def planner_options(
-    scenario: Scenario,
-    heuristic: str = "a",
-    *,
-    planner: str = "lattice",
-    refine: bool | dict | None = None,
-    clearance: float = 0.0,
-    cost: str = "longd",
-    version: str = "b",
-    ds: float | None = None,
-    alpha_method: str = "heuristic",
-    max_expansions: int | None = None,
-    time_limit: float = 10.0,
-    max_turn_chain: int = 4,
-    expander: dict | None = None,
-    lattice: dict | None = None,
-    options: PaperOptions | DefaultOptions | None = None,
+    scenario: Scenario, heuristic: str = "a", **options
 ) -> tuple[Scenario, PaperOptions | DefaultOptions]:
     """The door of :func:`plan_scenario`: its arguments checked once (ValueError naming a
     bad one), as the scenario to plan on (with ``clearance`` applied) and the options object
-    of the planner (:func:`options_of`, then the checks that need the scenario)."""
+    of the planner (:func:`options_of`, whose keyword arguments ``options`` are, then the
+    checks that need the scenario)."""
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
-    checked = options_of(
-        heuristic,
-        planner=planner,
-        refine=refine,
-        clearance=clearance,
-        cost=cost,
-        version=version,
-        ds=ds,
-        alpha_method=alpha_method,
-        max_expansions=max_expansions,
-        time_limit=time_limit,
-        max_turn_chain=max_turn_chain,
-        expander=expander,
-        lattice=lattice,
-        options=options,
-    )
-    return _apply(scenario, checked)
+    return _apply(scenario, options_of(heuristic, **options))
 
 
 def options_of(
