@@ -28,6 +28,7 @@ import sys
 from pathlib import Path
 
 import segplan
+from segplan.studies.floor_kinds import kind_floor
 from segplan.studies.floors import hard_cases, random_floors
 
 HERE = Path(__file__).resolve().parent
@@ -36,22 +37,26 @@ HERE = Path(__file__).resolve().parent
 TIME_LIMIT = 120.0
 
 
-def floors() -> list[tuple[str, segplan.Scenario]]:
-    """The fixed floor set, by name (module docstring)."""
+def floors(kinds: int = 0) -> list[tuple[str, segplan.Scenario]]:
+    """The fixed floor set, by name (module docstring); with ``kinds`` > 0 also the first
+    ``kinds`` floors of each 30 x 20 m kind of :mod:`segplan.studies.floor_kinds` (warehouse,
+    rooms, parking, clutter, robots: the floors issue 25's speed work must not change)."""
     spec = importlib.util.spec_from_file_location("robots", HERE / "robots.py")
     robots = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(robots)
     out = [(f"{kind}-{i}", sc) for kind in ("any", "natural") for i, sc in enumerate(random_floors(kind))]
     out += list(hard_cases().items())
     out += [(f"robot-{i}", sc) for i in range(1, 81) if (sc := robots.robot_floor(i)) is not None]
+    for kind in ("warehouse", "rooms", "parking", "clutter", "robots"):
+        out += [(f"{kind}-{i:03d}", kind_floor(kind, i)) for i in range(kinds)]
     return out
 
 
-def record(time_limit: float = TIME_LIMIT) -> dict[str, list]:
+def record(time_limit: float = TIME_LIMIT, kinds: int = 0) -> dict[str, list]:
     """Each floor's plan (``["plan", cost hex, nodes as hex]``) or failure (``["fail", reason]``),
-    and the time limit under the key ``"time_limit"``."""
+    and the time limit under the key ``"time_limit"``; ``kinds`` as in :func:`floors`."""
     out: dict[str, list] = {"time_limit": [time_limit]}
-    for name, sc in floors():
+    for name, sc in floors(kinds):
         try:
             p = segplan.plan_scenario(sc, time_limit=time_limit)
         except segplan.NoPathError as err:
@@ -85,6 +90,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--time-limit", type=float, default=TIME_LIMIT, help="seconds per plan (default %(default)s)"
     )
+    parser.add_argument(
+        "--kinds",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also the first N floors of each 30 x 20 m floor kind (default %(default)s)",
+    )
     args = parser.parse_args(argv)
     if args.compare:
         before, after = (json.loads(p.read_text()) for p in args.compare)
@@ -97,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
         return 1 if lines else 0
     if not args.out:
         parser.error("give --out FILE or --compare BEFORE AFTER")
-    data = record(args.time_limit)
+    data = record(args.time_limit, args.kinds)
     args.out.write_text(json.dumps(data) + "\n")
     plans = sum(v[0] == "plan" for v in data.values())
     print(f"{len(data) - 1} floors: {plans} plans (time limit {args.time_limit:g} s); wrote {args.out}")
