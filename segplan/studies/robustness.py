@@ -252,12 +252,13 @@ def _run_id(floor: str, planner: str, budget: float, seed: int) -> str:
 
 
 # -- OMPL side (stored) -------------------------------------------------------------------
-def ompl_record(job: tuple, resolution: float = om.RESOLUTION) -> dict:
-    """One OMPL run in a fresh process (:func:`segplan.studies.ompl_runner.solve_ompl_isolated`):
-    its CSV row (:data:`OMPL_COLUMNS`) with ``poses`` and ``simplified_poses`` (about one every
+def ompl_record(job: tuple, resolution: float = om.RESOLUTION, space: str = "dubins") -> dict:
+    """One OMPL run in a fresh process (:func:`segplan.studies.ompl_runner.solve_ompl_isolated`)
+    on ``space`` (``"dubins"``, or ``"reedsshepp"``: forward and reverse): its CSV row
+    (:data:`OMPL_COLUMNS`) with ``poses`` and ``simplified_poses`` (about one every
     :data:`PATH_STEP` m, mm; or None) added. Module level, so that a Dask worker runs it."""
     group, sc, planner, budget, seed = job
-    r = om.solve_ompl_isolated(sc, planner, budget, seed, "dubins", resolution=resolution)
+    r = om.solve_ompl_isolated(sc, planner, budget, seed, space, resolution=resolution)
     row = {c: r.get(c, math.nan) for c in OMPL_COLUMNS}
     row.update(group=group, floor=sc.name, floor_key=fl.floor_key(sc), generator=fl.GENERATOR_VERSION)
     row.update(planner=planner, budget=float(budget), seed=int(seed))
@@ -347,6 +348,7 @@ def run_ompl(
     rule: FairnessRule = FAIRNESS,
     argv: Sequence[str] = ("benchmarks/robustness.py", "--ompl"),
     about: dict | None = None,
+    space: str = "dubins",
 ) -> pd.DataFrame:
     """Run the OMPL jobs not stored yet through the one executor; store every run; the whole table.
 
@@ -365,8 +367,12 @@ def run_ompl(
     ``about`` describes another study's floors and runs in the provenance (its ``what``,
     ``generator_version``, ``budgets``, ``seeds``; default: this study's); its
     ``generator_version`` is then the ``generator`` column of every stored run
-    (:mod:`segplan.studies.kind_study` runs its floors through here).
+    (:mod:`segplan.studies.kind_study` runs its floors through here). ``space``: OMPL's
+    state space, ``"dubins"`` (forward only) or ``"reedsshepp"`` (forward and reverse, the
+    same radius: the reverse-gear study, :mod:`segplan.studies.reverse_floors`).
     """
+    if space not in om.SPACES:
+        raise ValueError(f"space must be one of {om.SPACES}, got {space!r}")
     out, paths_out, provenance = Path(out), Path(paths_out), Path(provenance)
     out.parent.mkdir(parents=True, exist_ok=True)
     journal = Journal(peers.journal_path(out))
@@ -388,14 +394,15 @@ def run_ompl(
             hard=[*HARD_SEEDS],
             turn_around=[*TURN_AROUND_SEEDS],
         ),
-        space="Dubins, radius L / tan(max_steer); validity segplan.studies.ompl_runner.SegmentValidity",
+        space=("Dubins" if space == "dubins" else "Reeds-Shepp")
+        + ", radius L / tan(max_steer); validity segplan.studies.ompl_runner.SegmentValidity",
         motion_check_resolution_m=om.RESOLUTION,
         measured_by="segplan.viz.metrics.measure_scenario_path, samples every 1 cm",
     )
     record.update(about or {})
     before = set(journal.read())
     records = run_jobs(
-        partial(ompl_record, resolution=om.RESOLUTION),
+        partial(ompl_record, resolution=om.RESOLUTION, space=space),
         jobs,
         key=job_id,
         journal=journal,
