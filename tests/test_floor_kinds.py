@@ -397,7 +397,8 @@ def test_ompl_side_goes_through_the_robustness_runner(tmp_path, monkeypatch):
     with pytest.raises(ValueError, match="kinds"):
         ks.kind_groups(1, ["garden"])
 
-    def fake_record(job, resolution):
+    def fake_record(job, resolution, space):
+        assert space == "dubins"  # the default space of both studies
         group, sc, planner, budget, seed = job
         row = dict.fromkeys(rb.OMPL_COLUMNS, math.nan)
         row.update(group=group, floor=sc.name, floor_key=floor_key(sc), generator=-1, planner=planner)

@@ -309,7 +309,8 @@ def test_run_ompl_stores_fair_runs_and_resumes(tmp_path, monkeypatch):
     jobs = [(g, sc, "BITstar", b, 1) for g, sc in floors for b in rb.BUDGETS]
     calls = []
 
-    def fake_record(job, resolution):
+    def fake_record(job, resolution, space):
+        assert space == "dubins"  # the default space of both studies
         group, sc, planner, budget, seed = job
         calls.append(rb.job_id(job))
         row = dict.fromkeys(rb.OMPL_COLUMNS, math.nan)
