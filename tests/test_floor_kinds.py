@@ -449,7 +449,7 @@ def test_harness_runs_the_segplan_side(tmp_path):
     )
     assert len(meta["commit"]) == 40 and set(meta["cpu_share"]) == {"min", "median", "max"}
     summary = pd.read_csv(tmp_path / "floor_kinds_summary.csv")
-    assert list(summary["kind"]) == ["parking", "warehouse"] and "time_p90_ms" in summary
+    assert list(summary["kind"]) == ["parking", "warehouse"] and "time_p95_ms" in summary
 
 
 def test_floors_draw_with_the_books_plot():

@@ -110,7 +110,9 @@ class Schedule:
         primitives (about ``(R / resolution)^2`` candidate end cells) stay as many as those
         of a robot with ``R = wide_turn_cells L / 8`` (4 L: steering limit 14 deg). 32
         (issue 25): on Fig. 5's floor with a 5 deg (3 deg) steering limit the primitives
-        took 9 s (23 s) and 164 MB (323 MB) at ``L / 8`` before the search began; every
+        took 9 s (23 s) and 164 MB (323 MB) at ``L / 8`` before the search began (measured
+        before the primitive sets were computed 3-4x faster in issue 25: about 1.7 s of CPU
+        for the 5 deg set at ``L / 8`` since; the measurement was not repeated); every
         robot of the book, the robots probe (25-60 deg) and chapter 9 turns tighter than
         4 L and keeps ``L / 8``.
     shortcut_window : int

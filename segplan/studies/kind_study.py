@@ -77,6 +77,7 @@ SUMMARY_COLUMNS = (
     "ratio_worst",
     "time_median_ms",
     "time_p90_ms",
+    "time_p95_ms",
     "time_max_ms",
     "cpu_median_ms",
 )
@@ -179,7 +180,8 @@ def summary(table: pd.DataFrame) -> pd.DataFrame:
     (``NoPathError``s by reason, e.g. ``"no path: 3, time limit: 1"``); the front-wheel
     length over BIT*'s at 5 s after its simplifier on floors both solve: ``ratio_floors``,
     ``ratio_median``, ``ratio_worst``; the plan's wall time ``time_median_ms``,
-    ``time_p90_ms``, ``time_max_ms`` (every floor) and its CPU time ``cpu_median_ms``.
+    ``time_p90_ms`` (the issue's table), ``time_p95_ms`` (its target), ``time_max_ms``
+    (every floor) and its CPU time ``cpu_median_ms``.
     """
     rows = []
     for kind, t in _numeric(table).groupby("group", sort=False):
@@ -203,6 +205,7 @@ def summary(table: pd.DataFrame) -> pd.DataFrame:
                 "ratio_worst": float(r.max()) if len(r) else math.nan,
                 "time_median_ms": _ms(t["seconds"], 0.5),
                 "time_p90_ms": _ms(t["seconds"], 0.9),
+                "time_p95_ms": _ms(t["seconds"], 0.95),
                 "time_max_ms": _ms(t["seconds"], 1.0),
                 "cpu_median_ms": _ms(t["cpu_seconds"], 0.5),
             }
