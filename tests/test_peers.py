@@ -251,3 +251,14 @@ def test_ompl_accepts_a_heading_of_pi():
     assert "Invalid" not in row["status"], row["status"]
     if row["solved"]:
         assert row["valid"] and row["reversals"] == 0
+
+
+@needs_ompl
+def test_a_worker_past_its_limit_is_killed_and_its_run_recorded_as_overrun(monkeypatch):
+    """BIT* overran a 5 s budget 50-fold on a Reeds-Shepp floor; the harness must not hang
+    or crash: the worker is killed at worker_limit and the run is not solved, with the
+    process's own wall and CPU time (so the fairness rule can judge it)."""
+    monkeypatch.setattr(ompl_runner, "worker_limit", lambda budget: 1.0)
+    row = ompl_runner.solve_ompl_isolated(peers.load("fig5_example1"), "BITstar", 5.0, 1)
+    assert row["status"].startswith("overrun") and not row["solved"] and not row["valid"]
+    assert 1.0 <= row["seconds"] < 5.0 and 0.0 < row["cpu_seconds"] <= row["seconds"] + 0.1

@@ -112,6 +112,7 @@ __all__ = [
     "solve_ompl",
     "solve_ompl_isolated",
     "thin_poses",
+    "worker_limit",
 ]
 
 PLANNERS = ("RRTstar", "InformedRRTstar", "BITstar")
@@ -133,6 +134,15 @@ SIMPLIFY_SECONDS = 1.0
 #: fields, its OMPL cost and validity.
 SIMPLIFIED_FIELDS = tuple(f"simplified_{f}" for f in (*METRIC_FIELDS, "ompl_cost", "valid"))
 _MARK = "@@peers@@"
+
+
+def worker_limit(budget: float) -> float:
+    """Wall seconds a worker of :func:`solve_ompl_isolated` may take for a run of ``budget``
+    seconds before it is killed and its run recorded as overrun: ``60 + 3 budget`` (the
+    process's start, OMPL's set-up, the simplifier and the path's measures take a few
+    seconds; BIT* on the Reeds-Shepp space was seen to return after 246 s of a 5 s budget,
+    on ``dead-end-007`` of :mod:`segplan.studies.reverse_floors`)."""
+    return 60.0 + 3.0 * float(budget)
 
 
 # -- inputs OMPL accepts -------------------------------------------------------------------
@@ -409,7 +419,9 @@ def solve_ompl_isolated(
 
     The row gains ``messages``: OMPL's warnings and errors of the run (`` | ``-joined,
     without nanobind's leak report at exit). A worker that fails raises RuntimeError with
-    its stderr.
+    its stderr. A worker still running after :func:`worker_limit` seconds is killed: its
+    row says ``status`` ``"overrun"``, not solved, with the wall time and the CPU time the
+    process got (both counted from its start).
     """
     sc = as_scenario(scenario)
     job = {
@@ -420,14 +432,37 @@ def solve_ompl_isolated(
         "space": space,
         **kw,
     }
-    proc = subprocess.run(
+    limit = worker_limit(budget)
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(
         [sys.executable, "-m", __name__, "--worker"],
-        input=json.dumps(job),
-        capture_output=True,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
         text=True,
-        timeout=60.0 + 3.0 * float(budget),
-        check=False,
     )
+    try:
+        stdout, stderr = proc.communicate(json.dumps(job), timeout=limit)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        _, _, usage = os.wait4(proc.pid, 0)  # this child's own CPU time
+        proc.returncode = -9
+        for pipe in (proc.stdin, proc.stdout, proc.stderr):
+            pipe.close()
+        return {
+            "scenario": sc.name,
+            "method": planner,
+            "space": space,
+            "budget": float(budget),
+            "seed": int(seed),
+            "status": f"overrun: no answer in {limit:g} s (budget {float(budget):g} s), killed",
+            "solved": False,
+            "valid": False,
+            "seconds": time.perf_counter() - t0,
+            "cpu_seconds": usage.ru_utime + usage.ru_stime,
+            "messages": "",
+        }
+    proc = subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith(_MARK)]
     if proc.returncode != 0 or not lines:
         raise RuntimeError(
