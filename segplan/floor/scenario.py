@@ -149,6 +149,12 @@ class Robot:
 
     Notes
     -----
+    Both planners honour the body: every union and pose goes through the same checker
+    (:class:`segplan.planning.validity.Workspace`). The paper's search places its
+    intermediate nodes for the segment A->B (bisectrix of the blocking vertex), so with long
+    overhangs it finds fewer plans than the default planner (a ``NoPathError``, never a
+    plan that touches).
+
     Overhangs rather than a ``Footprint`` object or an arbitrary polygon: every body the
     planner can honour exactly is fixed by three numbers (the axis segment's two ends and
     the disk's radius), and the obstacles' off-line enlargement already uses one of them.
