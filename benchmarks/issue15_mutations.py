@@ -114,7 +114,7 @@ MUTATIONS = (
     Mutation(
         "front_fallback_free",
         "segplan/floor/collision.py",
-        "            return float(cand[np.argmin((sw.front(cand) @ N.T - H).max(axis=1))])",
+        "            return float(cand[np.argmin((sw.point(cand, t) @ N.T - H).max(axis=1))])",
         "            return None",
         ("tests/test_collision_fallbacks.py",),
         "the front-wheel fallback answers 'free' instead of 'collision'",

@@ -14,7 +14,7 @@ writes the timed poses as a ROS ``nav_msgs/Path``-shaped message
 SCENARIO is a scenario file or the name of a shipped scenario (``segplan plan
 fig5_example1``), or a ROS ``map_server`` map with the poses and the robot: ``segplan plan
 map.yaml --start X Y THETA_DEG --goal X Y THETA_DEG --L 1.2 [--half-width 0.35]
-[--max-steer-deg 45]`` (:func:`segplan.load_ros_map`).
+[--max-steer-deg 45] [--overhangs FRONT REAR] [--rectangle]`` (:func:`segplan.load_ros_map`).
 
 ``segplan draw FLOOR [--out FLOOR.png]`` draws a floor before planning: FLOOR as SCENARIO
 above, a map with or without the poses and the robot. ``segplan scenarios`` lists the
@@ -83,6 +83,7 @@ scenario file (JSON, lengths in metres, angles in degrees):
   {"L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
    "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
    "bounds": [xmin, ymin, xmax, ymax], "obstacles": [[[x, y], ...], ...]}
+  optional, the body: "front_overhang": 0.3, "rear_overhang": 0.5, "rectangle": true
   an obstacle is any simple polygon (its vertices in order, not closed); a
   non-convex one (an L-shaped rack, a concave bay) is split into convex pieces
   before planning; example: segplan plan l_shaped_rack
@@ -432,6 +433,9 @@ def _add_map_options(p: argparse.ArgumentParser, argument: str, poses: str) -> N
     g.add_argument("--goal", nargs=3, type=float, metavar=("X", "Y", "THETA_DEG"), help="goal pose")
     g.add_argument("--L", type=float, metavar="M", help="robot length A->B in metres")
     g.add_argument("--half-width", type=float, metavar="M", help="robot half-width in metres (default 0)")
+    g.add_argument("--overhangs", nargs=2, type=float, metavar=("FRONT", "REAR"), help="the body's reach "
+                   "beyond the front wheel B and behind the rear axle A in metres (default 0 0)")  # fmt: skip
+    g.add_argument("--rectangle", action="store_true", help="the body is a rectangle (default: round ends)")
     g.add_argument(
         "--max-steer-deg", type=float, metavar="DEG", help="steering limit in degrees (default 45)"
     )
@@ -448,6 +452,7 @@ def _load(args, *, poses_needed: bool = True) -> Scenario | Floor:
     is_map = Path(args.scenario).suffix.lower() in MAP_SUFFIXES
     options = {"--start": args.start, "--goal": args.goal, "--L": args.L, "--half-width": args.half_width}
     options |= {"--max-steer-deg": args.max_steer_deg, "--unknown-free": args.unknown_free or None}
+    options |= {"--overhangs": args.overhangs, "--rectangle": args.rectangle or None}
     given = [flag for flag, value in options.items() if value is not None]
     if not is_map:
         if given:
@@ -464,11 +469,9 @@ def _load(args, *, poses_needed: bool = True) -> Scenario | Floor:
         floor = load_ros_map(args.scenario, unknown_is_occupied=not args.unknown_free)
         if missing:
             return floor
-        robot = Robot(
-            args.L,
-            0.0 if args.half_width is None else args.half_width,
-            math.radians(45.0 if args.max_steer_deg is None else args.max_steer_deg),
-        )
+        steer = math.radians(45.0 if args.max_steer_deg is None else args.max_steer_deg)
+        front, rear = args.overhangs or (0.0, 0.0)
+        robot = Robot(args.L, args.half_width or 0.0, steer, front, rear, args.rectangle)
     except ValueError as exc:
         raise ScenarioError(str(exc)) from None
     start, goal = ((x, y, math.radians(th)) for x, y, th in (args.start, args.goal))
@@ -490,7 +493,8 @@ def _floor_facts(floor: Scenario | Floor) -> tuple[str, str, str]:
         return size, obstacles, "-"
     r = floor.robot
     robot = f"L {r.L:g} m, half-width {r.half_width:g} m, steering {math.degrees(r.max_steer):.4g} deg"
-    return size, obstacles, robot
+    body = f", overhangs {r.front_overhang:g} m front, {r.rear_overhang:g} m rear" * (r.axis != (0, r.L))
+    return size, obstacles, robot + body + ", rectangle" * r.rectangle
 
 
 def _what_the_plan_is(result: Plan, scenario: Scenario) -> dict:
@@ -773,12 +777,8 @@ def _plan(args, scenario: Scenario, name: str) -> int:
         print("\n".join([_format_plan(result, name), *_format_facts(facts), *written_lines]))
     if args.out:
         try:
-            _draw(
-                args.out,
-                scenario,
-                result.unions,
-                f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}",
-            )
+            title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
+            _draw(args.out, scenario, result.unions, title)
         except OSError as exc:
             return _error(f"cannot write {args.out}: {exc.strerror or exc}")
         if not args.json:

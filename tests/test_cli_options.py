@@ -50,6 +50,8 @@ OPTION_TESTS = {
     "half_width": "test_map_robot_options_make_the_robot",
     "max_steer_deg": "test_map_robot_options_make_the_robot",
     "unknown_free": "test_map_unknown_free_opens_the_unknown_cells",
+    "overhangs": "test_map_body_options_make_the_body",
+    "rectangle": "test_map_body_options_make_the_body",
 }
 
 
@@ -462,6 +464,26 @@ def test_map_robot_options_make_the_robot(capsys, spy, room_map):
     status, _ = run_json(capsys, room_map, *MAP_POSES, "--L", "0.9", "--unknown-free")
     r = spy[-1]["scenario"].robot
     assert status == 0 and (r.half_width, r.max_steer) == (0.0, pytest.approx(math.radians(45)))
+
+
+def test_map_body_options_make_the_body(capsys, spy, room_map):
+    robot = [
+        "--L",
+        "0.9",
+        "--half-width",
+        "0.25",
+        "--overhangs",
+        "0.3",
+        "0.2",
+        "--rectangle",
+        "--unknown-free",
+    ]
+    status, _ = run_json(capsys, room_map, *MAP_POSES, *robot)
+    r = spy[-1]["scenario"].robot
+    assert status == 0 and (r.front_overhang, r.rear_overhang, r.rectangle) == (0.3, 0.2, True)
+    status, _ = run_json(capsys, room_map, *MAP_POSES, "--L", "0.9", "--unknown-free")
+    r = spy[-1]["scenario"].robot
+    assert status == 0 and (r.front_overhang, r.rear_overhang, r.rectangle) == (0.0, 0.0, False)
 
 
 def test_map_unknown_free_opens_the_unknown_cells(capsys, room_map):

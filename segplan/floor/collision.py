@@ -81,6 +81,35 @@ How we decide it: two stages
    of ``B`` inside is a collision; others are halved until ``e`` reaches the tolerance,
    where the answer is a conservative "collision").
 
+Footprints: overhangs (beyond the paper)
+----------------------------------------
+A robot with overhangs (:class:`segplan.Robot`: ``front_overhang`` beyond B,
+``rear_overhang`` behind A) sweeps the longer axis segment ``S(x) = [R(x), F(x)]``,
+``R = A - r u`` and ``F = A + (L + f) u``: a :class:`segplan.floor.sweep.Sweep` built with
+``rear=r, front=f``. Its points ``A + t u`` (``-r <= t <= L + f``) are rigidly attached
+to the robot, so the argument above carries over with A->B replaced by R->F: the first
+contact is (i) the start pose, (ii') ``R(x*)`` on an edge, (iii) ``F(x*)`` on an edge,
+or (iv) a vertex on ``S(x*)``, i.e. on the segment's line, which is the axis through A:
+the same cubic ``h_V``. Only (ii') changes: ``R`` is no longer on the cubic (for ``r >
+0``), so its path is decided like the front end's, by the certified subdivision (its bound
+``K`` holds for every ``|t| <= reach = max(r, L + f)``, the curvature bounds of the sweep
+and of ``M`` take ``reach`` for ``L``; the cubic candidates of (ii) are kept: each is
+still decided by an exact position test). The walls likewise: both end paths, certified.
+
+The body. The obstacles are enlarged off-line by the half-width ``w`` (a polygon that
+contains the exact Minkowski sum with the disk of radius ``w``,
+:func:`segplan.floor.geometry.enlarge_polygon`); so ``S(x)`` missing an enlarged obstacle
+means the *rounded body* ``S(x) + disk(w)`` (the points within ``w`` of the axis segment,
+the paper's "curved rectangle" when ``r = f = 0``) misses the obstacle itself, and this
+test is exact for that body (up to the enlargement's polygonal excess, conservative). A
+rectangular body ``[-r, L + f] x [-w, w]`` (``Robot(rectangle=True)``) lies inside the
+rounded one: the test is conservative for it, pessimistic only where an obstacle enters
+the two half-discs beyond its ends (``tests/test_footprint_collision.py`` proves the
+absence of misses against a dense shapely oracle of the rectangle and measures how often
+it is pessimistic). No tighter body of the form "segment plus disk" contains the
+rectangle, and the enlargement by a disk is what keeps it off-line: the rectangle's own
+Minkowski sum with an obstacle turns with the robot.
+
 Tolerance. Contacts are decided with a tiny conservative tolerance
 ``tol = TOUCH_RTOL * (L + X + r_max + |c| + |p0|)`` (``|c|``: distance of the polygon's
 centre from the union's start ``p0``; ``|p0|``, its largest world coordinate, for the
@@ -169,7 +198,10 @@ def _touching(sw: Sweep, s, V, N, H, tol):
     """Segment-polygon separating-axis test at abscissae ``s``; index of the first hit or -1."""
     x, fx, ux, uy = sw.segment(s)
     gA = np.multiply.outer(x, N[:, 0]) + np.multiply.outer(fx, N[:, 1]) - H  # n . A - h
-    gB = gA + sw.L * (np.multiply.outer(ux, N[:, 0]) + np.multiply.outer(uy, N[:, 1]))  # n . B - h
+    nu = np.multiply.outer(ux, N[:, 0]) + np.multiply.outer(uy, N[:, 1])
+    gB = gA + sw.t1 * nu  # n . B - h, at the front end
+    if sw.t0 != 0.0:  # the rear end, behind A
+        gA = gA + sw.t0 * nu
     sep = np.minimum(gA, gB).max(axis=1) > tol
     side = np.multiply.outer(ux, V[:, 1]) - np.multiply.outer(uy, V[:, 0]) + (uy * x - ux * fx)[:, None]
     sep |= (side.min(axis=1) > tol) | (side.max(axis=1) < -tol)
@@ -228,9 +260,7 @@ def _sweep(sw: Sweep, V, N, H, tol):
         i = _touching(sw, s_mid, V, N, H, tol)
         if i >= 0:
             return float(s_mid[i]) * sw.X, None
-        x, fx, ux, uy = sw.segment(s_mid)
-        A_mid = np.stack((x, fx), axis=-1)
-        B_mid = A_mid + sw.L * np.stack((ux, uy), axis=-1)
+        A_mid, B_mid = sw.ends(s_mid)
         s_lo, s_hi = np.concatenate((s_lo, s_mid)), np.concatenate((s_mid, s_hi))
         A_lo, A_hi = np.concatenate((A_lo, A_mid)), np.concatenate((A_mid, A_hi))
         B_lo, B_hi = np.concatenate((B_lo, B_mid)), np.concatenate((B_mid, B_hi))
@@ -269,13 +299,16 @@ def _event_abscissae(sw: Sweep, V, N, H) -> np.ndarray:
     return np.clip(s, 0.0, 1.0)
 
 
-def _front_meets(sw: Sweep, V, N, H, tol) -> float | None:
+def _front_meets(sw: Sweep, V, N, H, tol, t: float | None = None) -> float | None:
     """Certified test of event (iii): does the front-wheel path meet the polygon?
 
-    Returns an abscissa ``s`` of a (near-)contact, or ``None`` if the path is free.
+    Or the path of the point ``A + t u`` (``t``: default the front end ``sw.t1``, the front
+    wheel B without an overhang; ``sw.t0``, the rear end). Returns an abscissa ``s`` of a
+    (near-)contact, or ``None`` if the path is free.
     """
+    t = sw.t1 if t is None else t
     s = _S_FRONT
-    B = sw.front(s)
+    B = sw.point(s, t)
     g = B @ N.T - H
     inside = np.flatnonzero(np.all(g <= tol, axis=1))
     if inside.size:
@@ -299,10 +332,10 @@ def _front_meets(sw: Sweep, V, N, H, tol) -> float | None:
         if e <= tol or np.count_nonzero(live) > _FRONT_MAX_PIECES:
             # within ~tol of touching: conservative; report the closest sampled position
             cand = np.concatenate((s_lo[live], s_hi[live], 0.5 * (s_lo[live] + s_hi[live])))
-            return float(cand[np.argmin((sw.front(cand) @ N.T - H).max(axis=1))])
+            return float(cand[np.argmin((sw.point(cand, t) @ N.T - H).max(axis=1))])
         s_lo, s_hi, B_lo, B_hi, g_lo, g_hi = (a[live] for a in (s_lo, s_hi, B_lo, B_hi, g_lo, g_hi))
         s_mid = 0.5 * (s_lo + s_hi)
-        B_mid = sw.front(s_mid)
+        B_mid = sw.point(s_mid, t)
         g_mid = B_mid @ N.T - H
         inside = np.flatnonzero(np.all(g_mid <= tol, axis=1))
         if inside.size:
@@ -320,6 +353,8 @@ def _events(sw: Sweep, V, N, H, tol: float) -> float | None:
     if i >= 0:
         return float(s[i]) * sw.X
     s_hit = _front_meets(sw, V, N, H, tol)
+    if s_hit is None and sw.t0 != 0.0:  # event (ii'): the rear end's path, behind A
+        s_hit = _front_meets(sw, V, N, H, tol, sw.t0)
     return None if s_hit is None else s_hit * sw.X
 
 
@@ -437,10 +472,14 @@ def union_free(
 
 
 # -- walls --------------------------------------------------------------------------------------
-def _front_reaches(sw: Sweep, N, H, tol) -> bool:
-    """Certified: does ``max_s n_j . B(s) - h_j >= -tol`` for some wall ``j``?"""
+def _front_reaches(sw: Sweep, N, H, tol, t: float | None = None) -> bool:
+    """Certified: does ``max_s n_j . B(s) - h_j >= -tol`` for some wall ``j``?
+
+    ``B = A + t u``: default the front end (``t = sw.t1``); ``sw.t0``, the rear end.
+    """
+    t = sw.t1 if t is None else t
     s = _S_FRONT
-    g = sw.front(s) @ N.T - H  # (n, m)
+    g = sw.point(s, t) @ N.T - H  # (n, m)
     if np.any(g >= -tol):
         return True
     s_lo, s_hi, g_lo, g_hi = s[:-1], s[1:], g[:-1], g[1:]
@@ -454,7 +493,7 @@ def _front_reaches(sw: Sweep, N, H, tol) -> bool:
             return True
         s_lo, s_hi, g_lo, g_hi = s_lo[live], s_hi[live], g_lo[live], g_hi[live]
         s_mid = 0.5 * (s_lo + s_hi)
-        g_mid = sw.front(s_mid) @ N.T - H
+        g_mid = sw.point(s_mid, t) @ N.T - H
         if np.any(g_mid >= -tol):
             return True
         s_lo, s_hi = np.concatenate((s_lo, s_mid)), np.concatenate((s_mid, s_hi))
@@ -504,5 +543,7 @@ def sweep_in_bounds(sw: Sweep, bounds: Bounds) -> bool:
     s = np.clip(s[np.isfinite(s)], 0.0, 1.0)
     x, fx, _, _ = sw.segment(s)
     if np.any(np.multiply.outer(x, nx) + np.multiply.outer(fx, ny) - H >= -tol):
+        return False
+    if sw.t0 != 0.0 and _front_reaches(sw, N, H, tol, sw.t0):  # the rear end, behind A
         return False
     return not _front_reaches(sw, N, H, tol)

@@ -79,6 +79,7 @@ __all__ = [
     "finite_number",
     "polygons_overlap",
     "pose_collides",
+    "axis_segment",
     "pose_conflict",
     "pose_in_bounds",
     "pose_segment",
@@ -562,46 +563,61 @@ def segment_hits_edges(ax: float, ay: float, dx: float, dy: float, edges, tol: f
     return not (pos or neg)
 
 
-def _pose_segment(pose, L):
+def axis_segment(x: float, y: float, theta: float, L: float, rear: float = 0.0, front: float = 0.0):
+    """The robot's checked axis segment at the pose ``(x, y, theta)``: ``(ax, ay, dx, dy, length)``,
+    from ``A - rear u`` to ``A + (L + front) u`` (``u`` the heading; overhangs of
+    :class:`segplan.Robot`). ``rear = front = 0``: A->B, with the very floats of
+    ``(x, y, L cos theta, L sin theta, L)``."""
+    c, s = math.cos(theta), math.sin(theta)
+    length = L + rear + front
+    return x - rear * c, y - rear * s, length * c, length * s, length
+
+
+def _pose_segment(pose, L, rear: float = 0.0, front: float = 0.0):
     p = as_pose(pose)
-    L = check_length(L)
-    return p.x, p.y, L * math.cos(p.theta), L * math.sin(p.theta), L
+    return axis_segment(p.x, p.y, p.theta, check_length(L), rear, front)
 
 
-def pose_collides(pose, L: float, polygon, *, check: bool = True) -> bool:
+def pose_collides(
+    pose, L: float, polygon, *, check: bool = True, rear: float = 0.0, front: float = 0.0
+) -> bool:
     """Does the robot's segment at ``pose`` (A and heading, radians) touch ``polygon``?
 
     :func:`segment_hits_polygon` with the tolerance :func:`touch_tolerance` (that of
-    :func:`segplan.floor.collision.collides`): touching counts.
+    :func:`segplan.floor.collision.collides`): touching counts. ``rear``, ``front``: the
+    overhangs (:func:`axis_segment`).
     """
-    ax, ay, dx, dy, L = _pose_segment(pose, L)
+    ax, ay, dx, dy, L = _pose_segment(pose, L, rear, front)
     poly = as_polygon(polygon, check)
     return _hits_within(ax, ay, dx, dy, poly, touch_tolerance(ax, ay, L, poly.centre, poly.radius))
 
 
-def pose_in_bounds(pose, L: float, bounds) -> bool:
+def pose_in_bounds(pose, L: float, bounds, *, rear: float = 0.0, front: float = 0.0) -> bool:
     """Does the robot's segment at ``pose`` lie strictly inside ``bounds`` (walls)?
 
-    Touching a wall, within :func:`bounds_tolerance`, is leaving the bounds.
+    Touching a wall, within :func:`bounds_tolerance`, is leaving the bounds. ``rear``,
+    ``front``: the overhangs (:func:`axis_segment`).
     """
-    ax, ay, dx, dy, L = _pose_segment(pose, L)
+    ax, ay, dx, dy, L = _pose_segment(pose, L, rear, front)
     b = check_bounds(bounds)
     tol = bounds_tolerance(ax, ay, L, b)
     return segment_in_bounds((ax, ay), (ax + dx, ay + dy), b, tol)
 
 
-def pose_conflict(pose, L: float, polygons, bounds=None) -> str | None:
+def pose_conflict(
+    pose, L: float, polygons, bounds=None, *, rear: float = 0.0, front: float = 0.0
+) -> str | None:
     """Why the robot at ``pose`` is not free (``"bounds"`` or ``"obstacles[i]"``), or None.
 
     The one "is this pose free" predicate: :func:`pose_in_bounds` for the walls, then
     :func:`pose_collides` for each polygon (validated :class:`ConvexPolygon` objects or
     counter-clockwise arrays, not re-validated). :meth:`segplan.Scenario.pose_conflict`
     and the planner's :meth:`segplan.planning.validity.Workspace.pose_free` (its scalar fast path)
-    decide with it.
+    decide with it. ``rear``, ``front``: the robot's overhangs (:func:`axis_segment`).
     """
-    if bounds is not None and not pose_in_bounds(pose, L, bounds):
+    if bounds is not None and not pose_in_bounds(pose, L, bounds, rear=rear, front=front):
         return "bounds"
     for i, poly in enumerate(polygons):
-        if pose_collides(pose, L, poly, check=False):
+        if pose_collides(pose, L, poly, check=False, rear=rear, front=front):
             return f"obstacles[{i}]"
     return None

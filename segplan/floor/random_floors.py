@@ -13,11 +13,11 @@ import numpy as np
 
 from ..model.pose import TWO_PI, Pose, as_pose
 from .geometry import (
+    axis_segment,
     check_bounds,
     enlarge_polygon,
     finite_number,
     polygons_overlap,
-    pose_segment,
     segment_hits_polygon,
     segment_in_bounds,
 )
@@ -154,10 +154,15 @@ def random_world(
     fb = (xmin + robot.half_width, ymin + robot.half_width, xmax - robot.half_width, ymax - robot.half_width)
     rng = np.random.default_rng(seed)
 
+    def ends(p: Pose) -> tuple[np.ndarray, np.ndarray]:  # the checked segment, overhangs included
+        r = robot
+        ax, ay, dx, dy, _ = axis_segment(p.x, p.y, p.theta, r.L, r.rear_overhang, r.front_overhang)
+        return np.array([ax, ay]), np.array([ax + dx, ay + dy])
+
     def sample_pose(x_lo: float, x_hi: float) -> Pose:
         for _ in range(tries):
             p = Pose(rng.uniform(x_lo, x_hi), rng.uniform(fb[1], fb[3]), rng.uniform(-spread, spread))
-            a, b = pose_segment(p, robot.L)
+            a, b = ends(p)
             if segment_in_bounds(a, b, fb):
                 return p
         raise ValueError(
@@ -167,7 +172,7 @@ def random_world(
     quarter = 0.25 * (fb[2] - fb[0])
     start_p = as_pose(start, "start") if start is not None else sample_pose(fb[0], fb[0] + quarter)
     goal_p = as_pose(goal, "goal") if goal is not None else sample_pose(fb[2] - quarter, fb[2])
-    keep_out = [pose_segment(p, robot.L) for p in (start_p, goal_p)]
+    keep_out = [ends(p) for p in (start_p, goal_p)]
 
     def draw():
         r = rng.uniform(rmin, rmax)

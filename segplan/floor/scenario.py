@@ -23,6 +23,7 @@ Scenario files (JSON)
 
     {"name": "...", "description": "...",            (optional strings)
      "L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
+     "front_overhang": 0.3, "rear_overhang": 0.5, "rectangle": true,  (optional: the body)
      "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
      "bounds": [xmin, ymin, xmax, ymax],             (or null / absent: no walls)
      "obstacles": [[[x, y], [x, y], [x, y], ...], ...]}
@@ -30,7 +31,9 @@ Scenario files (JSON)
 Lengths in metres. **Angles in files are degrees**: ``theta`` of start and goal and
 ``max_steer_deg``; the Python API (``Pose``, ``Robot.max_steer``) uses radians.
 Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width`` 0,
-``max_steer_deg`` 45, ``bounds`` none. Any other key is an error, so is a repeated key.
+``max_steer_deg`` 45, ``bounds`` none, ``front_overhang`` and ``rear_overhang`` 0 and
+``rectangle`` false (the body, :class:`Robot`; written only when set). Any other key is
+an error, so is a repeated key.
 Polygons may be given in either orientation and are stored counter-clockwise; nothing
 else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
 ``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A closing copy of
@@ -38,9 +41,10 @@ the first vertex and vertices collinear with their neighbours are dropped (issue
 refused before). A vertex repeated elsewhere is an error, as are self-intersecting and
 zero-area polygons, NaN/Infinity literals and numbers that overflow to infinity.
 
-A pose collides when its segment A->B touches an enlarged obstacle (closed sets:
-touching is a collision); it is out of bounds unless the whole segment lies strictly
-inside the bounds shrunk by ``half_width`` (:attr:`Scenario.free_bounds`). Scenarios
+A pose collides when its segment A->B (extended by the overhangs, :attr:`Robot.axis`)
+touches an enlarged obstacle (closed sets: touching is a collision); it is out of bounds
+unless the whole segment lies strictly inside the bounds shrunk by ``half_width``
+(:attr:`Scenario.free_bounds`). Scenarios
 decide both with :func:`segplan.floor.geometry.pose_conflict`, the planner's own pose test.
 Polygons are validated by :func:`segplan.floor.geometry.check_convex_polygon` (the one
 validator) and enlarged by :func:`segplan.floor.geometry.enlarge_polygon`. Random floors:
@@ -52,7 +56,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
@@ -73,6 +77,7 @@ __all__ = [
     "MIN_LENGTH",
     "OPTIONAL_KEYS",
     "PreparedFloor",
+    "FOOTPRINT_KEYS",
     "REQUIRED_KEYS",
     "Robot",
     "Scenario",
@@ -92,7 +97,9 @@ __all__ = [
 MIN_LENGTH = 1e-6
 
 REQUIRED_KEYS = ("L", "start", "goal", "obstacles")
-OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "bounds")
+#: The body's keys (:class:`Robot`; beyond the paper), optional, saved only when set.
+FOOTPRINT_KEYS = ("front_overhang", "rear_overhang", "rectangle")
+OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "bounds", *FOOTPRINT_KEYS)
 
 
 class ScenarioError(ValueError):
@@ -117,16 +124,48 @@ class Robot:
         enlarged by it off-line and the walls move inwards by it. 0: the pure segment.
     max_steer : float
         Largest steering angle of the front wheel, radians, in ``(0, pi/2)``.
+    front_overhang, rear_overhang : float
+        The body's reach beyond the front wheel B and behind the rear axle A along the
+        axis (>= 0, m; beyond the paper). The planner checks the *axis segment* from
+        ``A - rear_overhang u`` to ``B + front_overhang u`` (``u`` the heading), whose
+        points follow the robot's rigid motion, among the obstacles enlarged by
+        ``half_width``: :mod:`segplan.floor.collision` sweeps it exactly. 0, 0: the paper's
+        segment A->B.
+    rectangle : bool
+        The body (its footprint, :meth:`footprint`): False (default), the points within
+        ``half_width`` of that axis segment, a rectangle with round ends (today's robot,
+        the paper's "curved rectangle" when the overhangs are 0), which the planner's test
+        sweeps exactly; True, the rectangle ``[-rear_overhang, L + front_overhang] x
+        [-half_width, half_width]`` of the robot's frame, which the rounded body contains
+        (the tightest body of the form "segment enlarged by a disk", the only one the
+        off-line enlargement can serve): the planner's test is then conservative, and
+        pessimistic only by the two round caps beyond its ends.
 
     Raises
     ------
     ValueError
-        Naming the argument, for a non-finite or out-of-range value.
+        Naming the argument, for a non-finite or out-of-range value (a negative overhang:
+        the body must contain the segment A->B).
+
+    Notes
+    -----
+    Both planners honour the body: every union and pose goes through the same checker
+    (:class:`segplan.planning.validity.Workspace`). The paper's search places its
+    intermediate nodes for the segment A->B (bisectrix of the blocking vertex), so with long
+    overhangs it finds fewer plans than the default planner (a ``NoPathError``, never a
+    plan that touches).
+
+    Overhangs rather than a ``Footprint`` object or an arbitrary polygon: every body the
+    planner can honour exactly is fixed by three numbers (the axis segment's two ends and
+    the disk's radius), and the obstacles' off-line enlargement already uses one of them.
     """
 
     L: float
     half_width: float = 0.0
     max_steer: float = math.radians(45.0)
+    front_overhang: float = 0.0
+    rear_overhang: float = 0.0
+    rectangle: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "L", check_length(self.L, "L"))
@@ -137,6 +176,35 @@ class Robot:
                 f"max_steer must lie in (0, pi/2) radians, got {steer} ({math.degrees(steer)} deg)"
             )
         object.__setattr__(self, "max_steer", steer)
+        for name in ("front_overhang", "rear_overhang"):
+            value = finite_number(getattr(self, name), name)
+            if value < 0.0:
+                raise ValueError(f"{name} must be >= 0 (the body must contain the segment A->B), got {value}")
+            object.__setattr__(self, name, value)
+        if not isinstance(self.rectangle, bool):
+            raise ValueError(f"rectangle must be True or False, got {self.rectangle!r}")
+
+    @property
+    def axis(self) -> tuple[float, float]:
+        """The checked axis segment in the robot's frame: ``(-rear_overhang, L + front_overhang)``
+        along the heading from A (``(0, L)``, the segment A->B, by default)."""
+        return -self.rear_overhang, self.L + self.front_overhang
+
+    def footprint(self, arc_points: int = 9) -> np.ndarray:
+        """Outline ``(k, 2)`` of the body in the robot's frame (A at the origin, heading +x),
+        counter-clockwise.
+
+        The rectangle (``rectangle=True``), or the points within ``half_width`` of the axis
+        segment (:attr:`axis`) with each round end drawn by ``arc_points`` points (an
+        inscribed polygon: for drawing; the planner's test uses the exact round body).
+        """
+        lo, hi = self.axis
+        w = self.half_width
+        if self.rectangle:
+            return np.array([[lo, -w], [hi, -w], [hi, w], [lo, w]])
+        t = np.linspace(-0.5 * math.pi, 0.5 * math.pi, arc_points)
+        front = np.column_stack((hi + w * np.cos(t), w * np.sin(t)))
+        return np.vstack((front, (hi + lo, 0.0) - front))  # the rear end: the front's turned half way round
 
     @property
     def max_curvature(self) -> float:
@@ -210,7 +278,10 @@ class Scenario:
         axes; touching, within the relative tolerance ``TOUCH_RTOL`` = 1e-9, counts), so a
         scenario that loads has a start and goal the planner accepts.
         """
-        return pose_conflict(pose, self.robot.L, self.enlarged, self.free_bounds)
+        r = self.robot
+        return pose_conflict(
+            pose, r.L, self.enlarged, self.free_bounds, rear=r.rear_overhang, front=r.front_overhang
+        )
 
     def is_free(self, pose) -> bool:
         """Is the robot at ``pose`` (radians) clear of every enlarged obstacle and wall?"""
@@ -226,6 +297,9 @@ class Scenario:
         out["L"] = self.robot.L
         out["half_width"] = self.robot.half_width
         out["max_steer_deg"] = math.degrees(self.robot.max_steer)
+        for key in FOOTPRINT_KEYS:  # written only when set: the paper's robot's files unchanged
+            if getattr(self.robot, key):
+                out[key] = getattr(self.robot, key)
         out["start"] = [self.start.x, self.start.y, math.degrees(self.start.theta)]
         out["goal"] = [self.goal.x, self.goal.y, math.degrees(self.goal.theta)]
         out["bounds"] = None if self.bounds is None else list(self.bounds)
@@ -339,15 +413,15 @@ class PreparedFloor:
             conflict = sc.pose_conflict(pose)
             if conflict == "bounds":
                 raise ScenarioError(
-                    f"{source}: {label} pose {_show(pose)} is out of bounds: its segment of length "
-                    f"L={robot.L} must lie strictly inside the bounds shrunk by half_width, "
+                    f"{source}: {label} pose {_show(pose)} is out of bounds: its {_segment(robot)} "
+                    f"must lie strictly inside the bounds shrunk by half_width, "
                     f"{list(sc.free_bounds)}"
                 )
             if conflict is not None:
                 conflict = floor.describe(int(conflict[len("obstacles[") : -1]))  # the obstacle as given
                 raise ScenarioError(
                     f"{source}: {label} pose {_show(pose)} collides with {conflict} "
-                    f"enlarged by half_width={robot.half_width} (segment of length L={robot.L})"
+                    f"enlarged by half_width={robot.half_width} ({_segment(robot)})"
                 )
         return sc
 
@@ -376,6 +450,9 @@ def prepare_floor(
         raise ScenarioError(
             f"{source}: half_width={robot.half_width} must be 0 or within [{MIN_LENGTH:g}, {WORLD_LIMIT:g}]"
         )
+    for key in FOOTPRINT_KEYS[:2]:
+        if getattr(robot, key) > WORLD_LIMIT:
+            raise ScenarioError(f"{source}: {key}={getattr(robot, key)} exceeds {WORLD_LIMIT:g}")
     if bounds is None and isinstance(obstacles, Floor):
         bounds = obstacles.bounds
     if bounds is not None:
@@ -415,6 +492,14 @@ def _check_scale(values, where: str) -> None:
 
 def _show(p: Pose) -> str:
     return show_pose(p)
+
+
+def _segment(robot: Robot) -> str:
+    """The checked segment in words, for error messages."""
+    text = f"segment of length L={robot.L}"
+    if robot.front_overhang or robot.rear_overhang:
+        text += f" with overhangs front_overhang={robot.front_overhang}, rear_overhang={robot.rear_overhang}"
+    return text
 
 
 # -- files ----------------------------------------------------------------------------
@@ -498,8 +583,13 @@ def scenario_from_dict(data, source: str = "<dict>", path: Path | None = None) -
     steer = _number(data.get("max_steer_deg", 45.0), f"{source}: max_steer_deg")
     if not 0.0 < steer < 90.0:
         raise ScenarioError(f"{source}: max_steer_deg must lie in (0, 90) degrees, got {steer}")
+    body = {k: _number(data[k], f"{source}: {k}") for k in FOOTPRINT_KEYS[:2] if k in data}
+    if "rectangle" in data:
+        if not isinstance(data["rectangle"], bool):
+            raise ScenarioError(f"{source}: rectangle must be true or false, got {_brief(data['rectangle'])}")
+        body["rectangle"] = data["rectangle"]
     try:
-        robot = Robot(L, half_width, math.radians(steer))
+        robot = Robot(L, half_width, math.radians(steer), **body)
     except ValueError as exc:
         raise ScenarioError(f"{source}: {exc}") from None
     poses = {}
@@ -635,7 +725,7 @@ def with_clearance(scenario: Scenario, clearance: float) -> Scenario:
         enlarged obstacle or wall.
     """
     robot = scenario.robot
-    grown = Robot(robot.L, robot.half_width + float(clearance), robot.max_steer)
+    grown = replace(robot, half_width=robot.half_width + float(clearance))
     try:
         return make_scenario(
             grown, scenario.start, scenario.goal, scenario.outlines, scenario.bounds,

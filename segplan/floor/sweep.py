@@ -134,24 +134,37 @@ class Sweep:
     Parameters
     ----------
     union : Union
+    rear, front : float
+        The robot's overhangs (>= 0, :class:`segplan.Robot`; beyond the paper): the swept
+        segment is the axis segment ``P(x, t) = A(x) + t u(x)``, ``t`` in ``[t0, t1] =
+        [-rear, L + front]``, instead of A->B (``[0, L]``, the default). Its points
+        follow the robot's rigid motion, so every bound below holds with ``L`` replaced
+        by ``reach = max(rear, L + front)``, the largest ``|t|`` (see
+        :mod:`segplan.floor.collision`).
 
     Notes
     -----
     Frame quantities refer to the union's alpha frame (origin ``p0``, x-axis at world
     angle ``union.frame_angle``). ``box = (x_lo, x_hi, y_lo, y_hi)`` is a rectangle of that
     frame containing every position of the segment. Reusing one ``Sweep`` for all
-    obstacles (as :func:`union_free` does) saves the per-union work.
+    obstacles (as :func:`union_free` does) saves the per-union work. With ``rear = front
+    = 0`` every float is the one of the paper's segment (the same decisions, bit for bit).
     """
 
     __slots__ = (
         "union", "L", "X", "c1", "c2", "c3", "x0", "y0", "cos", "sin", "box", "dc_end", "dc_margin",
-        "K", "size", "mag", "_grid", "_dc", "_rot",
+        "K", "size", "mag", "_grid", "_dc", "_rot", "t0", "t1", "reach", "dc_start",
     )  # fmt: skip
 
-    def __init__(self, union: Union):
+    def __init__(self, union: Union, rear: float = 0.0, front: float = 0.0):
         if not isinstance(union, Union):
             raise ValueError(f"union must be a segplan.Union, got {type(union).__name__}")
-        L, X = union.L, union.x_end
+        rear, front = float(rear), float(front)
+        if not (0.0 <= rear < math.inf and 0.0 <= front < math.inf):
+            raise ValueError(f"rear and front must be finite and >= 0, got rear={rear}, front={front}")
+        X = union.x_end
+        t1 = union.L + front  # the front end's t (L: the front wheel B)
+        L = max(rear, t1)  # the reach: every bound below that held with L for A->B
         _, c1, c2, c3 = union.coefficients
         beta = union.frame_angle
         cb, sb = math.cos(beta), math.sin(beta)
@@ -165,18 +178,27 @@ class Sweep:
             sl.append(c1 + (2.0 * c2 + 3.0 * c3 * xv) * xv)
         # the direction's u_y = f' / sqrt(1 + f'^2) grows with f'
         uy_lo, uy_hi = (m / math.sqrt(1.0 + m * m) for m in (min(sl), max(sl)))
-        box = (0.0, X + L, min(fs) + L * min(0.0, uy_lo), max(fs) + L * max(0.0, uy_hi))
-        # d_c: polyline of the cubic (M = L), or of the cubic extended to X + L (M = L^2 max|f''| / 2)
+        # a point A + t u has frame abscissa x + t u_x in [-rear, X + t1] and height
+        # f(x) + t u_y: t1 u_y below (u_y < 0) or above, -rear u_y the other way
+        lo_t, hi_t = t1 * min(0.0, uy_lo), t1 * max(0.0, uy_hi)
+        if rear:
+            lo_t, hi_t = min(lo_t, -rear * max(0.0, uy_hi)), max(hi_t, -rear * min(0.0, uy_lo))
+        box = (-rear if rear else 0.0, X + t1, min(fs) + lo_t, max(fs) + hi_t)
+        # d_c: polyline of the cubic (M = reach), or of the cubic extended to [-rear, X + t1]
+        # (M = reach^2 max|f''| / 2: the point at t has abscissa x + h, |h| <= |t|)
         f2 = max(abs(2.0 * c2), abs(2.0 * c2 + 6.0 * c3 * X))
-        f2e = max(abs(2.0 * c2), abs(2.0 * c2 + 6.0 * c3 * (X + L)))
+        f2e = max(abs(2.0 * c2), abs(2.0 * c2 + 6.0 * c3 * (X + t1)))
+        if rear:
+            f2e = max(f2e, abs(2.0 * c2 - 6.0 * c3 * rear))
         m_ext = 0.5 * L * L * f2e
-        x_end, margin, f2c = (X + L, m_ext, f2e) if m_ext < L else (X, L, f2)
-        margin += f2c * (x_end / _DC_PIECES) ** 2 / 8.0  # chord error of the polyline
+        x_start, x_end, margin, f2c = (-rear, X + t1, m_ext, f2e) if m_ext < L else (0.0, X, L, f2)
+        margin += f2c * ((x_end - x_start) / _DC_PIECES) ** 2 / 8.0  # chord error of the polyline
         # |B''| bound over [0, X] (x units), then in s = x / X units
         k_x = f2 + L * (6.0 * abs(c3) + _THETA2 * f2 * f2)
         values = (
-            union, L, X, c1, c2, c3, union.p0.x, union.p0.y, cb, sb, box, x_end, margin,
-            k_x * X * X, L + X, max(abs(union.p0.x), abs(union.p0.y)), None, None, None,
+            union, union.L, X, c1, c2, c3, union.p0.x, union.p0.y, cb, sb, box, x_end, margin,
+            k_x * X * X, t1 + rear + X, max(abs(union.p0.x), abs(union.p0.y)), None, None, None,
+            -rear, t1, L, x_start,
         )  # fmt: skip
         for key, value in zip(self.__slots__, values, strict=True):
             object.__setattr__(self, key, value)
@@ -194,9 +216,23 @@ class Sweep:
         return x, fx, ux, fp * ux
 
     def front(self, s) -> np.ndarray:
-        """Frame front-wheel points ``B`` at ``s``, ``(n, 2)``."""
+        """Frame front ends of the swept segment at ``s``, ``(n, 2)``: the front wheels ``B``
+        without a front overhang."""
+        return self.point(s, self.t1)
+
+    def point(self, s, t: float) -> np.ndarray:
+        """Frame points ``A + t u`` at ``s``, ``(n, 2)`` (``t = L``: the front wheel ``B``)."""
         x, fx, ux, uy = self.segment(s)
-        return np.stack((x + self.L * ux, fx + self.L * uy), axis=-1)
+        return np.stack((x + t * ux, fx + t * uy), axis=-1)
+
+    def ends(self, s) -> tuple[np.ndarray, np.ndarray]:
+        """Frame end points of the swept segment at ``s``, rear and front, ``(n, 2)`` each
+        (``A`` itself without a rear overhang)."""
+        x, fx, ux, uy = self.segment(s)
+        front = np.stack((x + self.t1 * ux, fx + self.t1 * uy), axis=-1)
+        if self.t0 == 0.0:
+            return np.stack((x, fx), axis=-1), front
+        return np.stack((x + self.t0 * ux, fx + self.t0 * uy), axis=-1), front
 
     @property
     def rot(self) -> np.ndarray:
@@ -220,10 +256,10 @@ class Sweep:
 
     def bend(self, s_lo, s_hi) -> np.ndarray:
         """Bound on ``|P''(x)|`` (x units) over each ``[s_lo, s_hi]``, for every point ``P``
-        of the segment (``P = A + t u``, ``0 <= t <= L``; ``|P''| <= |A''| + L |u''|``)."""
+        of the segment (``P = A + t u``, ``t0 <= t <= t1``; ``|P''| <= |A''| + reach |u''|``)."""
         c2, c3, X = self.c2, self.c3, self.X
         f2 = np.maximum(np.abs(2.0 * c2 + 6.0 * c3 * X * s_lo), np.abs(2.0 * c2 + 6.0 * c3 * X * s_hi))
-        return f2 + self.L * (6.0 * abs(c3) + _THETA2 * f2 * f2)
+        return f2 + self.reach * (6.0 * abs(c3) + _THETA2 * f2 * f2)
 
     def grid(self) -> _Grid:
         """Positions, hull axes and chord bounds of the level-0 sweep (cached)."""
@@ -233,10 +269,10 @@ class Sweep:
         g = _Grid()
         g.s = s = _S_GRID
         x, fx, ux, uy = self.segment(s)
-        g.A = A = np.empty((len(s), 2))
-        A[:, 0], A[:, 1] = x, fx
-        g.B = B = np.empty_like(A)
-        B[:, 0], B[:, 1] = x + self.L * ux, fx + self.L * uy
+        g.A = A = np.empty((len(s), 2))  # the rear ends (A without a rear overhang)
+        A[:, 0], A[:, 1] = (x, fx) if self.t0 == 0.0 else (x + self.t0 * ux, fx + self.t0 * uy)
+        g.B = B = np.empty_like(A)  # the front ends
+        B[:, 0], B[:, 1] = x + self.t1 * ux, fx + self.t1 * uy
         g.nseg = nseg = np.empty_like(A)  # unit normal of the segment's line
         nseg[:, 0], nseg[:, 1] = -uy, ux
         g.oseg = ux * fx - uy * x
@@ -265,7 +301,8 @@ class Sweep:
             return True, tol
         # d_c >= (distance to the polyline) - (chord error); reject if d_c > r_max + M
         if self._dc is None:
-            px = self.dc_end * _S_DC
+            a = self.dc_start
+            px = self.dc_end * _S_DC if a == 0.0 else a + (self.dc_end - a) * _S_DC
             py = ((self.c3 * px + self.c2) * px + self.c1) * px
             ex, ey = px[1:] - px[:-1], py[1:] - py[:-1]
             object.__setattr__(self, "_dc", (px[:-1], py[:-1], ex, ey, 1.0 / (ex * ex + ey * ey)))

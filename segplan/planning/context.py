@@ -23,10 +23,13 @@ __all__ = ["Deadline", "PlanningContext", "Progress", "workspace_of"]
 
 
 def workspace_of(scenario: Scenario) -> Workspace:
-    """The validity checker of a scenario: its enlarged obstacles, the robot's length and
-    steering limit, the walls moved in by ``half_width`` (:class:`Workspace`)."""
+    """The validity checker of a scenario: its enlarged obstacles, the robot's length,
+    overhangs and steering limit, the walls moved in by ``half_width`` (:class:`Workspace`)."""
     robot = scenario.robot
-    return Workspace(scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature)
+    return Workspace(
+        scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature,
+        rear=robot.rear_overhang, front=robot.front_overhang,
+    )  # fmt: skip
 
 
 class Deadline:

@@ -35,6 +35,7 @@ from ..floor.buckets import BoxGrid
 from ..floor.collision import CollisionStats, collides, sweep_in_bounds
 from ..floor.geometry import (
     ConvexPolygon,
+    axis_segment,
     bounds_tolerance,
     check_bounds,
     edge_list,
@@ -164,6 +165,12 @@ class Workspace:
     cache : bool
         Keep the answers about each union (:meth:`facts`, at most 4096 unions); False:
         every question is answered afresh.
+    rear, front : float
+        The robot's overhangs (:class:`segplan.Robot`, beyond the paper): every test is of
+        the axis segment from ``A - rear u`` to ``B + front u``
+        (:class:`segplan.floor.sweep.Sweep`, :func:`segplan.floor.geometry.axis_segment`);
+        :attr:`overhang`, the larger, is the distance from A->B of its farthest point, which
+        the lattice's point screens add to their covering radii. 0: the segment A->B.
 
     Notes
     -----
@@ -181,9 +188,20 @@ class Workspace:
     """
 
     def __init__(
-        self, obstacles, L: float, bounds=None, max_curvature: float = math.inf, *, cache: bool = True
+        self,
+        obstacles,
+        L: float,
+        bounds=None,
+        max_curvature: float = math.inf,
+        *,
+        cache: bool = True,
+        rear: float = 0.0,
+        front: float = 0.0,
     ):
         self.convex = [ConvexPolygon(p, check=False) for p in obstacles]
+        self.rear, self.front = float(rear), float(front)
+        #: The farthest a point of the checked segment lies from A->B (m; 0 without overhangs).
+        self.overhang = max(self.rear, self.front)
         self.polygons = [c.vertices for c in self.convex]  # counter-clockwise
         self.L = float(L)
         self.bounds = None if bounds is None else check_bounds(bounds)
@@ -236,15 +254,13 @@ class Workspace:
 
     # -- poses -------------------------------------------------------------------------
     def pose_free(self, pose) -> bool:
-        """Is the robot's segment at ``pose`` clear of every obstacle and inside the bounds?
+        """Is the robot's segment at ``pose`` (overhangs included) clear of every obstacle and in the bounds?
 
         :func:`segplan.floor.geometry.pose_conflict` (the one pose predicate, touching within
         ``TOUCH_RTOL``) in scalar arithmetic: the same decisions, faster for a handful of
         polygons (checked by ``tests/test_fast_paths.py``).
         """
-        x, y, th = pose
-        L = self.L
-        dx, dy = L * math.cos(th), L * math.sin(th)
+        x, y, dx, dy, L = axis_segment(*pose, self.L, self.rear, self.front)
         if self.bounds is not None:
             tol = bounds_tolerance(x, y, L, self.bounds)
             if not segment_in_bounds((x, y), (x + dx, y + dy), self.bounds, tol):
@@ -333,7 +349,7 @@ class Workspace:
         """The per-union data of the collision tests (cached on the union's identity)."""
         f = self.facts(u)
         if f.sweep is None:
-            f.sweep = Sweep(u)
+            f.sweep = Sweep(u, self.rear, self.front)
         return f.sweep
 
     def in_bounds(self, u: Union) -> bool:

@@ -3,7 +3,8 @@
 Section "Mobile robot modelling" of Campoy et al. (1989): the robot is the oriented
 segment from A (middle of the rear axle) to B (middle of the front wheel), of length
 ``L``; its body is the set of points within ``half_width`` of that segment (the
-"curved rectangle" of Fig. 2 as the planner models it); a plan is a chain of unions whose
+"curved rectangle" of Fig. 2 as the planner models it), or beyond the paper the robot's
+footprint (:meth:`segplan.Robot.footprint`: overhangs, a rectangle); a plan is a chain of unions whose
 cost, formula [1], is the length of B's path. :func:`animate_plan` shows exactly that: at
 each frame the body, the segment A->B at its pose on the plan, the trace of A (rear,
 solid) and of B (front wheel, dashed) behind it, over the floor (obstacles, their
@@ -27,12 +28,14 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..floor.geometry import finite_number
+from ..floor.scenario import Robot
 from ..model.pose import check_length
 from .metrics import plan_poses
 
@@ -49,6 +52,7 @@ __all__ = [
     "MAX_FRAMES",
     "MIN_FRAMES",
     "animate_path",
+    "body_label",
     "animate_plan",
     "check_animation",
     "frame_count",
@@ -139,13 +143,12 @@ def _frame_indices(poses: np.ndarray, L: float, frames: int) -> np.ndarray:
     return idx
 
 
-def _body(L: float, half_width: float, arc_points: int = 9) -> np.ndarray:
-    """Outline ``(k, 2)`` of the robot's body at the pose ``(0, 0, 0)``: the points within
-    ``half_width`` of the segment from A = (0, 0) to B = (L, 0), its round ends as polygons
-    of ``arc_points`` points each."""
-    t = np.linspace(-0.5 * math.pi, 0.5 * math.pi, arc_points)
-    front = np.column_stack((L + half_width * np.cos(t), half_width * np.sin(t)))
-    return np.vstack((front, (L, 0.0) - front))  # the rear end: the front's turned half way round
+def body_label(robot: Robot) -> str:
+    """Legend label of the robot's body: its half-width, and its overhangs and shape if set."""
+    text = f"robot, half-width {robot.half_width:g} m"
+    if robot.front_overhang or robot.rear_overhang:
+        text += f", overhangs {robot.front_overhang:g} m front, {robot.rear_overhang:g} m rear"
+    return text + (" (rectangle)" if robot.rectangle else "")
 
 
 def animate_path(
@@ -172,8 +175,10 @@ def animate_path(
     scenario : segplan.Scenario, optional
         The floor drawn underneath (obstacles, their enlargement, walls, start and goal).
     half_width : float, optional
-        The body's half-width (m): the robot is drawn as the points within it of A->B.
-        Default: the scenario's robot's, 0 (the segment alone) without a scenario.
+        The body's half-width (m). Default: the scenario's robot's, 0 (the segment alone)
+        without a scenario. The body drawn is the robot's footprint
+        (:meth:`segplan.Robot.footprint`: the scenario's robot, its overhangs and shape, with
+        this half-width; the points within it of A->B without a scenario).
     frames : int, optional
         Number of frames (>= 2), equally spaced in front-wheel arc length; default
         :func:`frame_count` of the path's front-wheel length.
@@ -212,6 +217,9 @@ def animate_path(
     if half_width is None:
         half_width = 0.0 if scenario is None else scenario.robot.half_width
     half_width = finite_number(half_width, "half_width", 0.0)
+    robot = Robot(L, half_width) if scenario is None else replace(scenario.robot, half_width=half_width)
+    outline = robot.footprint()
+    shown = half_width > 0 or robot.front_overhang > 0 or robot.rear_overhang > 0
     A = P[:, :2]
     B = A + L * np.column_stack((np.cos(P[:, 2]), np.sin(P[:, 2])))
     if frames is None:
@@ -224,7 +232,8 @@ def animate_path(
         plot_pose(scenario.start, L, ax, color="tab:green", label="start")
         plot_pose(scenario.goal, L, ax, color="tab:red", label="goal")
     points = np.vstack((A, B))
-    lo, hi = points.min(axis=0) - half_width, points.max(axis=0) + half_width
+    reach = half_width + max(robot.front_overhang, robot.rear_overhang)
+    lo, hi = points.min(axis=0) - reach, points.max(axis=0) + reach
     if scenario is not None and scenario.bounds is not None:
         xmin, ymin, xmax, ymax = scenario.bounds
         lo, hi = np.minimum(lo, (xmin, ymin)), np.maximum(hi, (xmax, ymax))
@@ -238,15 +247,14 @@ def animate_path(
         ax.set_title(title, fontsize="medium")
     (rear,) = ax.plot([], [], color="tab:blue", lw=1.5, label=REAR_LABEL)
     (front,) = ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label=FRONT_LABEL)
-    outline = _body(L, half_width)
     body = PolygonPatch(
         outline,
         closed=True,
         facecolor="0.3",
         edgecolor="k",
         alpha=0.45,
-        label=f"robot, half-width {half_width:g} m" if half_width > 0 else "_nolegend_",
-        visible=half_width > 0,
+        label=body_label(robot) if shown else "_nolegend_",
+        visible=shown,
     )
     ax.add_patch(body)
     (segment,) = ax.plot([], [], color="k", lw=2.0 if half_width > 0 else 3.0, solid_capstyle="round")

@@ -28,7 +28,8 @@ returns a :class:`PathMetrics`:
   between sample intervals: two cusps within one interval go unseen. The curvature
   ignores the two intervals around each cusp and any *fold* (an interval much shorter
   than both neighbours), where the chord misjudges the distance travelled;
-- ``clearance``: the smallest distance from the robot's segment A-B at any sample to the
+- ``clearance``: the smallest distance from the robot's segment A-B (extended by the
+  overhangs ``rear`` and ``front``, :class:`segplan.Robot`) at any sample to the
   given polygons and walls, **in the planning model**: pass the obstacles *enlarged* by
   the robot's half-width and the walls *shrunk* by it (``scenario.enlarged``,
   ``scenario.free_bounds``; :func:`measure_scenario_path` does). Because the enlarged
@@ -55,7 +56,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from ..floor.geometry import check_bounds
+from ..floor.geometry import check_bounds, finite_number
 from ..model.pose import as_poses, check_length, wrap
 from ..model.union import Union
 
@@ -149,6 +150,8 @@ def measure_path(
     bounds: Sequence[float] | None = None,
     *,
     jump_tol: float | None = None,
+    rear: float = 0.0,
+    front: float = 0.0,
 ) -> PathMetrics:
     """Measure a path of the segment robot (module docstring).
 
@@ -169,6 +172,10 @@ def measure_path(
         A change of curvature larger than this (1/m) counts as a discontinuity; default
         ``0.1 / L`` (a step of about 6 degrees of the steering angle around straight
         ahead).
+    rear, front : float
+        The robot's overhangs (:class:`segplan.Robot`; >= 0): the ``clearance`` and
+        ``collides`` are of the axis segment from ``A - rear u`` to ``B + front u``, the
+        segment the planner checks (the lengths stay those of A and B).
 
     Returns
     -------
@@ -178,12 +185,13 @@ def measure_path(
     ------
     ValueError
         Malformed ``poses`` (not ``(n, 3)`` with ``n >= 2``, non-finite), ``L``,
-        ``bounds`` or ``jump_tol``.
+        ``bounds``, ``jump_tol``, ``rear`` or ``front``.
     """
     P = as_poses(poses, "poses")
     if P.ndim != 2 or P.shape[0] < 2:
         raise ValueError(f"poses must be an (n, 3) array with n >= 2, got shape {P.shape}")
     L = check_length(L)
+    rear, front = finite_number(rear, "rear", 0.0), finite_number(front, "front", 0.0)
     b = None if bounds is None else check_bounds(bounds)
     if jump_tol is None:
         jump_tol = 0.1 / L
@@ -200,7 +208,9 @@ def measure_path(
 
     import shapely  # lazily: only the measurement needs it
 
-    lines = shapely.linestrings(np.stack((A, B), axis=1))
+    U = np.column_stack((np.cos(theta), np.sin(theta)))
+    R, F = (A, B) if rear == front == 0.0 else (A - rear * U, A + (L + front) * U)  # the checked segment
+    lines = shapely.linestrings(np.stack((R, F), axis=1))
     clearance = math.inf
     collides = False
     polys = [shapely.Polygon(np.asarray(p, dtype=float)) for p in polygons]
@@ -212,7 +222,7 @@ def measure_path(
     if b is not None:
         xmin, ymin, xmax, ymax = b
         # distance of a segment inside an axis-aligned box to its walls is attained at an end point
-        ends = np.concatenate((A, B))
+        ends = np.concatenate((R, F))
         walls = np.minimum.reduce(
             (ends[:, 0] - xmin, xmax - ends[:, 0], ends[:, 1] - ymin, ymax - ends[:, 1])
         )
@@ -234,8 +244,13 @@ def measure_path(
 
 
 def measure_scenario_path(poses, scenario, *, jump_tol: float | None = None) -> PathMetrics:
-    """:func:`measure_path` in a :class:`segplan.Scenario`: its enlarged obstacles and free bounds."""
-    return measure_path(poses, scenario.robot.L, scenario.enlarged, scenario.free_bounds, jump_tol=jump_tol)
+    """:func:`measure_path` in a :class:`segplan.Scenario`: its enlarged obstacles and free bounds,
+    its robot's overhangs."""
+    r = scenario.robot
+    return measure_path(
+        poses, r.L, scenario.enlarged, scenario.free_bounds, jump_tol=jump_tol,
+        rear=r.rear_overhang, front=r.front_overhang,
+    )  # fmt: skip
 
 
 def plan_clearance(plan, scenario, step: float = DEFAULT_STEP) -> float:

@@ -25,7 +25,7 @@ from matplotlib.patches import Rectangle
 
 from ..floor.geometry import check_bounds
 from ..floor.maps import Floor
-from ..floor.scenario import Scenario
+from ..floor.scenario import Robot, Scenario
 from ..model.cost import longd_exact
 from ..model.pose import Pose, as_pose, check_length, feasible_alpha_interval, intrinsic
 from ..model.union import Union
@@ -37,6 +37,7 @@ __all__ = [
     "REAR_STYLE",
     "ROBOT_STYLE",
     "legend_beside",
+    "plot_body",
     "plan_figure",
     "plot_bounds",
     "plot_floor",
@@ -128,6 +129,34 @@ def plot_pose(
         arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": linewidth, "shrinkA": 0, "shrinkB": 0},
     )
     return _plane(ax)
+
+
+def plot_body(
+    pose: Sequence[float] | Pose,
+    robot: Robot,
+    ax: Axes | None = None,
+    *,
+    color: str = "0.2",
+    alpha: float = 0.3,
+    label: str | None = None,
+) -> Axes:
+    """Draw the robot's body at ``pose``: its footprint (:meth:`segplan.Robot.footprint`, the
+    round body or the rectangle, overhangs included), filled, over the segment A->B
+    (:func:`plot_pose`).
+
+    Raises
+    ------
+    ValueError
+        Malformed ``pose``, or ``robot`` not a :class:`segplan.Robot`.
+    """
+    if not isinstance(robot, Robot):
+        raise ValueError(f"robot must be a segplan.Robot, got {type(robot).__name__}")
+    p = as_pose(pose, "pose")
+    ax = _axes(ax)
+    c, s = math.cos(p.theta), math.sin(p.theta)
+    outline = robot.footprint() @ np.array([[c, s], [-s, c]]) + (p.x, p.y)
+    ax.add_patch(PolygonPatch(outline, closed=True, facecolor=color, edgecolor=color, alpha=alpha))
+    return plot_pose(p, robot.L, ax, color=color, label=label)
 
 
 def plot_union(
@@ -378,7 +407,8 @@ def plan_figure(
 
     The floor (:func:`plot_floor`), the plan's unions if any (:func:`plot_plan`: the rear path
     A, the dashed front-wheel path B, the robot at intervals), a scenario's start (green) and
-    goal (red), every one in the legend and the legend beside the floor (:func:`legend_beside`).
+    goal (red) (with its body if it has a footprint beyond the paper's, :func:`plot_body`),
+    every one in the legend and the legend beside the floor (:func:`legend_beside`).
     Returns the :class:`matplotlib.figure.Figure`; the caller saves and closes it.
     """
     fig, ax = plt.subplots(figsize=figsize)
@@ -387,8 +417,13 @@ def plan_figure(
     if unions:
         plot_plan(unions, ax, robots=4)
     if isinstance(floor, Scenario):
-        plot_pose(floor.start, floor.L, ax, color="tab:green", label="start")
-        plot_pose(floor.goal, floor.L, ax, color="tab:red", label="goal")
+        r = floor.robot
+        if r.front_overhang or r.rear_overhang or r.rectangle:  # a footprint beyond the paper's
+            plot_body(floor.start, r, ax, color="tab:green", label="start")
+            plot_body(floor.goal, r, ax, color="tab:red", label="goal")
+        else:
+            plot_pose(floor.start, floor.L, ax, color="tab:green", label="start")
+            plot_pose(floor.goal, floor.L, ax, color="tab:red", label="goal")
     ax.set_title(title)
     legend_beside(ax)
     return fig

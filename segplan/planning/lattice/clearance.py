@@ -60,6 +60,11 @@ class ClearanceGrid:
         Included in the area without bounds.
     margin : float
         See ``bounds``.
+    overhang : float
+        The robot's larger overhang (:attr:`segplan.planning.validity.Workspace.overhang`):
+        subtracted from every lower bound, so that the screens of points of the segment
+        A->B (the primitives' points, :func:`union_points`) stay conservative for the
+        longer checked segment, each of whose points lies within ``overhang`` of A->B.
 
     Notes
     -----
@@ -75,7 +80,9 @@ class ClearanceGrid:
     the whole square is, and the robot's segment cannot touch it.
     """
 
-    def __init__(self, convex, frame, bounds, cell: float, pad: int, goal, margin: float):
+    def __init__(
+        self, convex, frame, bounds, cell: float, pad: int, goal, margin: float, overhang: float = 0.0
+    ):
         sx, sy, th = (float(v) for v in frame)
         c, s = math.cos(th), math.sin(th)
         self.frame = (sx, sy, th)
@@ -92,7 +99,7 @@ class ClearanceGrid:
             pts = np.concatenate(
                 (pts.min(axis=0, keepdims=True) - margin, pts.max(axis=0, keepdims=True) + margin)
             )
-            self.margin = float(margin) - 1e-9
+            self.margin = float(margin) - 1e-9 - overhang
         lo = np.floor(pts.min(axis=0) / g).astype(int) - pad
         hi = np.ceil(pts.max(axis=0) / g).astype(int) + pad
         self.i0, self.j0 = int(lo[0]), int(lo[1])
@@ -134,6 +141,8 @@ class ClearanceGrid:
         else:
             edt = np.full(occ.shape, 1e9)
         lower = edt * g - 2.0 * h
+        if overhang:
+            lower -= overhang
         lower[occ] = -1.0
         self.lower, self.blocked = lower, blocked
         self.lower_flat, self.blocked_flat = lower.ravel(), blocked.ravel()
@@ -342,7 +351,8 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     """Is union ``u`` free in workspace ``ws``? And how many certified tests it took (0 or 1).
 
     ``pts`` are world points such that every point of the swept segment lies within
-    ``delta`` of one of them (:func:`union_points`, or a primitive's points). With
+    ``delta`` of one of them (:func:`union_points`, or a primitive's points), the robot's
+    overhangs apart (the segment A->B's points: ``ws.overhang`` is added to ``delta`` here). With
     ``screen``, first the signed distances of the points to the edge lines of the
     obstacles near them (their largest over the edges, a lower bound of the distance to a
     convex polygon) and to the walls: all above ``delta``, free; a point strictly inside an
@@ -351,6 +361,8 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     :meth:`~segplan.planning.validity.Workspace.colliding` on the obstacles near the points).
     ``u`` may be a function without arguments that returns the union (called only then).
     """
+    if ws.overhang:
+        delta = delta + ws.overhang  # the checked segment reaches that far beyond A->B
     rows = np.ascontiguousarray(pts.T)  # (2, n): the reductions below run along rows
     x, y = rows
     xlo, xhi, ylo, yhi = float(x.min()), float(x.max()), float(y.min()), float(y.max())

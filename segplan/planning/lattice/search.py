@@ -224,6 +224,7 @@ def lattice_floor(scenario, ws: Workspace, tries: list[float], cell: float, sche
         pad,
         scenario.goal,
         schedule.margin(L, R),
+        ws.overhang,
     )
     gl = grid.to_lattice(np.array([scenario.goal[:2]]))[0]
     field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 5e4) * cell))
