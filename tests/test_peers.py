@@ -262,3 +262,16 @@ def test_a_worker_past_its_limit_is_killed_and_its_run_recorded_as_overrun(monke
     row = ompl_runner.solve_ompl_isolated(peers.load("fig5_example1"), "BITstar", 5.0, 1)
     assert row["status"].startswith("overrun") and not row["solved"] and not row["valid"]
     assert 1.0 <= row["seconds"] < 5.0 and 0.0 < row["cpu_seconds"] <= row["seconds"] + 0.1
+
+
+def test_a_crashed_worker_is_recorded_not_raised(monkeypatch, tmp_path):
+    """OMPL died of SIGSEGV in a Reeds-Shepp run of the reverse study: the run is recorded as
+    crashed (not solved, no times to judge), the study goes on."""
+    crash = tmp_path / "crash.sh"
+    crash.write_text("#!/bin/sh\ncat > /dev/null\nkill -SEGV $$\n")
+    crash.chmod(0o755)
+    monkeypatch.setattr(sys, "executable", str(crash))
+    row = ompl_runner.solve_ompl_isolated(peers.load("fig5_example1"), "BITstar", 5.0, 1, "reedsshepp")
+    assert row["status"] == "crashed: the OMPL worker died of signal 11"
+    assert not row["solved"] and not row["valid"] and math.isnan(row["seconds"])
+    assert not executor.FAIRNESS.refuses(row)  # not a starved run: nothing to judge

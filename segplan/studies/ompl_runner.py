@@ -421,7 +421,9 @@ def solve_ompl_isolated(
     without nanobind's leak report at exit). A worker that fails raises RuntimeError with
     its stderr. A worker still running after :func:`worker_limit` seconds is killed: its
     row says ``status`` ``"overrun"``, not solved, with the wall time and the CPU time the
-    process got (both counted from its start).
+    process got (both counted from its start). A worker killed by a signal (OMPL crashed)
+    gives ``status`` ``"crashed: ..."``, not solved, without times (NaN: nothing to judge;
+    such a row is not kept by a study, so the run is tried again in its next session).
     """
     sc = as_scenario(scenario)
     job = {
@@ -449,20 +451,13 @@ def solve_ompl_isolated(
         proc.returncode = -9
         for pipe in (proc.stdin, proc.stdout, proc.stderr):
             pipe.close()
-        return {
-            "scenario": sc.name,
-            "method": planner,
-            "space": space,
-            "budget": float(budget),
-            "seed": int(seed),
-            "status": f"overrun: no answer in {limit:g} s (budget {float(budget):g} s), killed",
-            "solved": False,
-            "valid": False,
-            "seconds": time.perf_counter() - t0,
-            "cpu_seconds": usage.ru_utime + usage.ru_stime,
-            "messages": "",
-        }
+        status = f"overrun: no answer in {limit:g} s (budget {float(budget):g} s), killed"
+        cpu = usage.ru_utime + usage.ru_stime
+        return _unsolved(sc, planner, space, budget, seed, status, time.perf_counter() - t0, cpu)
     proc = subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
+    if proc.returncode < 0:  # killed by a signal: OMPL crashed (seen: SIGSEGV on the Reeds-Shepp space)
+        status = f"crashed: the OMPL worker died of signal {-proc.returncode}"
+        return _unsolved(sc, planner, space, budget, seed, status, math.nan, math.nan)
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith(_MARK)]
     if proc.returncode != 0 or not lines:
         raise RuntimeError(
@@ -473,6 +468,23 @@ def solve_ompl_isolated(
     row["scenario"] = sc.name
     row["messages"] = " | ".join(dict.fromkeys(_clean_stderr(proc.stderr)))
     return row
+
+
+def _unsolved(sc, planner, space, budget, seed, status: str, seconds: float, cpu: float) -> dict:
+    """The row of a run that gave no answer (:func:`solve_ompl_isolated`)."""
+    return {
+        "scenario": sc.name,
+        "method": planner,
+        "space": space,
+        "budget": float(budget),
+        "seed": int(seed),
+        "status": status,
+        "solved": False,
+        "valid": False,
+        "seconds": seconds,
+        "cpu_seconds": cpu,
+        "messages": "",
+    }
 
 
 def _worker() -> None:
