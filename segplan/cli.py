@@ -29,6 +29,7 @@ traceback.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
@@ -83,6 +84,7 @@ scenario file (JSON, lengths in metres, angles in degrees):
   {"L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
    "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
    "bounds": [xmin, ymin, xmax, ymax], "obstacles": [[[x, y], ...], ...]}
+  optional "reverse": true lets the robot drive backwards (as --reverse);
   an obstacle is any simple polygon (its vertices in order, not closed); a
   non-convex one (an L-shaped rack, a concave bay) is split into convex pieces
   before planning; example: segplan plan l_shaped_rack
@@ -129,7 +131,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "plan",
         help="plan a path on a scenario file and print (or draw) it",
-        description="Plan a forward-only path from the scenario's start pose to its goal pose.",
+        description="Plan a path from the scenario's start pose to its goal pose "
+        "(forward-only unless --reverse).",
         epilog=PLAN_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -154,6 +157,12 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="M",
         help="safety margin in metres beyond half_width, honoured by the search and the "
         "refinement (default 0: the paper's model)",
+    )
+    p.add_argument(
+        "--reverse",
+        action="store_true",
+        help='beyond the paper: the robot may also drive backwards (the scenario\'s "reverse": true); '
+        "the default planner then reverses where it pays (issue 26), the paper's search stays forward-only",
     )
     p.add_argument("--heuristic", choices=("a", "b", "c"), default="a", help="h' of the search (default: a)")
     p.add_argument(
@@ -673,6 +682,8 @@ def _main(argv: list[str] | None) -> int:
     except ScenarioError as exc:
         return _error(str(exc))
     name = getattr(scenario, "name", "") or Path(args.scenario).stem
+    if getattr(args, "reverse", False) and isinstance(scenario, Scenario):
+        scenario = dataclasses.replace(scenario, robot=dataclasses.replace(scenario.robot, reverse=True))
     if args.command == "draw":
         return _draw_floor(args, scenario, name)
     return _plan(args, scenario, name)

@@ -6,8 +6,9 @@ the front wheel). Its real plan section, the "curved rectangle" of Fig. 2, is mo
 as the set of points within ``half_width`` of that segment; so the segment is planned
 among obstacles *enlarged off-line* by ``half_width`` ("the processing of the model of
 the surroundings, with obstacles appropriately enlarged, is performed off-line"), and
-the walls of a rectangular world move inwards by ``half_width``. Forward motion only,
-with the steering angle of the front wheel bounded by ``max_steer``: the rear path's
+the walls of a rectangular world move inwards by ``half_width``. Forward motion only (the
+paper's AGV; ``Robot(..., reverse=True)`` lets the default planner reverse too, beyond the
+paper, issue 26), with the steering angle of the front wheel bounded by ``max_steer``: the rear path's
 curvature stays within ``tan(max_steer) / L`` (bicycle model).
 
 Obstacles are simple polygons, ``(k, 2)`` vertex arrays or shapely ``Polygon`` /
@@ -23,6 +24,7 @@ Scenario files (JSON)
 
     {"name": "...", "description": "...",            (optional strings)
      "L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
+     "reverse": false,                               (optional: may the robot reverse?)
      "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
      "bounds": [xmin, ymin, xmax, ymax],             (or null / absent: no walls)
      "obstacles": [[[x, y], [x, y], [x, y], ...], ...]}
@@ -30,7 +32,8 @@ Scenario files (JSON)
 Lengths in metres. **Angles in files are degrees**: ``theta`` of start and goal and
 ``max_steer_deg``; the Python API (``Pose``, ``Robot.max_steer``) uses radians.
 Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width`` 0,
-``max_steer_deg`` 45, ``bounds`` none. Any other key is an error, so is a repeated key.
+``max_steer_deg`` 45, ``reverse`` false (written only when true), ``bounds`` none. Any
+other key is an error, so is a repeated key.
 Polygons may be given in either orientation and are stored counter-clockwise; nothing
 else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
 ``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A closing copy of
@@ -49,6 +52,7 @@ validator) and enlarged by :func:`segplan.floor.geometry.enlarge_polygon`. Rando
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from collections.abc import Sequence
@@ -92,7 +96,7 @@ __all__ = [
 MIN_LENGTH = 1e-6
 
 REQUIRED_KEYS = ("L", "start", "goal", "obstacles")
-OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "bounds")
+OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "reverse", "bounds")
 
 
 class ScenarioError(ValueError):
@@ -117,6 +121,10 @@ class Robot:
         enlarged by it off-line and the walls move inwards by it. 0: the pure segment.
     max_steer : float
         Largest steering angle of the front wheel, radians, in ``(0, pi/2)``.
+    reverse : bool
+        May the robot drive backwards (beyond the paper, issue 26)? False: the paper's
+        forward-only AGV. True: the default planner may also traverse a union backwards
+        (the lattice planner, :mod:`segplan.planning.lattice.astar`), changing direction at nodes.
 
     Raises
     ------
@@ -127,8 +135,11 @@ class Robot:
     L: float
     half_width: float = 0.0
     max_steer: float = math.radians(45.0)
+    reverse: bool = False
 
     def __post_init__(self):
+        if not isinstance(self.reverse, bool):
+            raise ValueError(f"reverse must be True or False, got {self.reverse!r}")
         object.__setattr__(self, "L", check_length(self.L, "L"))
         object.__setattr__(self, "half_width", finite_number(self.half_width, "half_width", minimum=0.0))
         steer = finite_number(self.max_steer, "max_steer")
@@ -226,6 +237,8 @@ class Scenario:
         out["L"] = self.robot.L
         out["half_width"] = self.robot.half_width
         out["max_steer_deg"] = math.degrees(self.robot.max_steer)
+        if self.robot.reverse:
+            out["reverse"] = True
         out["start"] = [self.start.x, self.start.y, math.degrees(self.start.theta)]
         out["goal"] = [self.goal.x, self.goal.y, math.degrees(self.goal.theta)]
         out["bounds"] = None if self.bounds is None else list(self.bounds)
@@ -498,8 +511,11 @@ def scenario_from_dict(data, source: str = "<dict>", path: Path | None = None) -
     steer = _number(data.get("max_steer_deg", 45.0), f"{source}: max_steer_deg")
     if not 0.0 < steer < 90.0:
         raise ScenarioError(f"{source}: max_steer_deg must lie in (0, 90) degrees, got {steer}")
+    reverse = data.get("reverse", False)
+    if not isinstance(reverse, bool):
+        raise ScenarioError(f"{source}: reverse must be true or false, got {_brief(reverse)}")
     try:
-        robot = Robot(L, half_width, math.radians(steer))
+        robot = Robot(L, half_width, math.radians(steer), reverse)
     except ValueError as exc:
         raise ScenarioError(f"{source}: {exc}") from None
     poses = {}
@@ -635,7 +651,7 @@ def with_clearance(scenario: Scenario, clearance: float) -> Scenario:
         enlarged obstacle or wall.
     """
     robot = scenario.robot
-    grown = Robot(robot.L, robot.half_width + float(clearance), robot.max_steer)
+    grown = dataclasses.replace(robot, half_width=robot.half_width + float(clearance))
     try:
         return make_scenario(
             grown, scenario.start, scenario.goal, scenario.outlines, scenario.bounds,

@@ -68,7 +68,9 @@ class Planner:
         self.robot = robot
         self.options: PaperOptions | DefaultOptions = options_of(heuristic, **options)
         clearance = self.options.clearance
-        grown = Robot(robot.L, robot.half_width + clearance, robot.max_steer) if clearance > 0 else robot
+        grown = robot
+        if clearance > 0:
+            grown = dataclasses.replace(robot, half_width=robot.half_width + clearance)
         source = "Planner" if clearance == 0 else f"Planner (clearance={clearance:g})"
         self.floor = prepare_floor(grown, obstacles, bounds, source=source)
         self._workspace = None
