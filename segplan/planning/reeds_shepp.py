@@ -70,11 +70,12 @@ def _tau_omega(u: float, v: float, xi: float, eta: float, phi: float) -> tuple[f
     return tau, _mod(tau - u + v - phi)
 
 
-# -- the base words: length in units of R, inf where the word does not reach (x, y, phi) -----------
-def _csc_same(x: float, y: float, phi: float) -> float:
+# -- the base words: length in units of R, inf where the word does not reach (x, y, phi) ---------
+# (``sp``, ``cp``: sin phi and cos phi)
+def _csc_same(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ S+ L+ (formula 8.1)."""
-    u = math.hypot(x - math.sin(phi), y - 1.0 + math.cos(phi))
-    t = math.atan2(y - 1.0 + math.cos(phi), x - math.sin(phi))
+    u = math.hypot(x - sp, y - 1.0 + cp)
+    t = math.atan2(y - 1.0 + cp, x - sp)
     if t >= -ZERO:
         v = _mod(phi - t)
         if v >= -ZERO:
@@ -82,9 +83,9 @@ def _csc_same(x: float, y: float, phi: float) -> float:
     return math.inf
 
 
-def _csc_opposite(x: float, y: float, phi: float) -> float:
+def _csc_opposite(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ S+ R+ (formula 8.2)."""
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+    xi, eta = x + sp, y - 1.0 - cp
     rr = xi * xi + eta * eta
     if rr < 4.0:
         return math.inf
@@ -94,9 +95,9 @@ def _csc_opposite(x: float, y: float, phi: float) -> float:
     return t + u + v if t >= -ZERO and v >= -ZERO else math.inf
 
 
-def _ccc(x: float, y: float, phi: float) -> float:
+def _ccc(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ R- L (formulas 8.3 and 8.4)."""
-    xi, eta = x - math.sin(phi), y - 1.0 + math.cos(phi)
+    xi, eta = x - sp, y - 1.0 + cp
     rho = math.hypot(xi, eta)
     if rho > 4.0:
         return math.inf
@@ -106,9 +107,9 @@ def _ccc(x: float, y: float, phi: float) -> float:
     return abs(t) + abs(u) + abs(v) if t >= -ZERO and u <= ZERO else math.inf
 
 
-def _cccc_a(x: float, y: float, phi: float) -> float:
+def _cccc_a(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ R+u L-u R- (formula 8.7)."""
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+    xi, eta = x + sp, y - 1.0 - cp
     rho = 0.25 * (2.0 + math.hypot(xi, eta))
     if rho > 1.0:
         return math.inf
@@ -117,9 +118,9 @@ def _cccc_a(x: float, y: float, phi: float) -> float:
     return abs(t) + 2.0 * abs(u) + abs(v) if t >= -ZERO and v <= ZERO else math.inf
 
 
-def _cccc_b(x: float, y: float, phi: float) -> float:
+def _cccc_b(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ R-u L-u R+ (formula 8.8)."""
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+    xi, eta = x + sp, y - 1.0 - cp
     rho = (20.0 - xi * xi - eta * eta) / 16.0
     if not 0.0 <= rho <= 1.0:
         return math.inf
@@ -130,9 +131,9 @@ def _cccc_b(x: float, y: float, phi: float) -> float:
     return abs(t) + 2.0 * abs(u) + abs(v) if t >= -ZERO and v >= -ZERO else math.inf
 
 
-def _ccsc_same(x: float, y: float, phi: float) -> float:
+def _ccsc_same(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ R-(pi/2) S- L- (formula 8.9)."""
-    xi, eta = x - math.sin(phi), y - 1.0 + math.cos(phi)
+    xi, eta = x - sp, y - 1.0 + cp
     rho = math.hypot(xi, eta)
     if rho < 2.0:
         return math.inf
@@ -144,9 +145,9 @@ def _ccsc_same(x: float, y: float, phi: float) -> float:
     return abs(t) + abs(u) + abs(v) + 0.5 * _PI if ok else math.inf
 
 
-def _ccsc_opposite(x: float, y: float, phi: float) -> float:
+def _ccsc_opposite(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ R-(pi/2) S- R- (formula 8.10)."""
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+    xi, eta = x + sp, y - 1.0 - cp
     rho = math.hypot(-eta, xi)
     if rho < 2.0:
         return math.inf
@@ -157,9 +158,9 @@ def _ccsc_opposite(x: float, y: float, phi: float) -> float:
     return abs(t) + abs(u) + abs(v) + 0.5 * _PI if ok else math.inf
 
 
-def _ccscc(x: float, y: float, phi: float) -> float:
+def _ccscc(x: float, y: float, phi: float, sp: float, cp: float) -> float:
     """L+ R-(pi/2) S- L-(pi/2) R+ (formula 8.11)."""
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+    xi, eta = x + sp, y - 1.0 - cp
     rho = math.hypot(xi, eta)
     if rho < 2.0:
         return math.inf
@@ -180,17 +181,30 @@ _BACKWARDS = _ASYMMETRIC
 
 
 def _shortest(x: float, y: float, phi: float) -> float:
-    """The Reeds–Shepp length (units of R) to the pose ``(x, y, phi)`` from ``(0, 0, 0)``."""
-    flips = ((x, y, phi), (-x, y, -phi), (x, -y, -phi), (-x, -y, phi))  # as is, timeflip, reflect, both
+    """The Reeds–Shepp length (units of R) to the pose ``(x, y, phi)`` from ``(0, 0, 0)``.
+
+    Every word gets ``sin phi`` and ``cos phi`` with the pose (computed once: the
+    symmetries only flip their signs)."""
+    sp, cp = math.sin(phi), math.cos(phi)
+    # as is, timeflip, reflect, both
+    flips = ((x, y, phi, sp), (-x, y, -phi, -sp), (x, -y, -phi, -sp), (-x, -y, phi, sp))
     best = math.inf
     for word in _SYMMETRIC + _ASYMMETRIC:
-        for a, b, c in flips:
-            best = min(best, word(a, b, c))
-    c, s = math.cos(phi), math.sin(phi)
-    xb, yb = x * c + y * s, x * s - y * c  # backwards
+        for a, b, f, s in flips:
+            length = word(a, b, f, s, cp)
+            if length < best:
+                best = length
+    xb, yb = x * cp + y * sp, x * sp - y * cp  # backwards
     for word in _BACKWARDS:
-        for a, b, cc in ((xb, yb, phi), (-xb, yb, -phi), (xb, -yb, -phi), (-xb, -yb, phi)):
-            best = min(best, word(a, b, cc))
+        for a, b, f, s in (
+            (xb, yb, phi, sp),
+            (-xb, yb, -phi, -sp),
+            (xb, -yb, -phi, -sp),
+            (-xb, -yb, phi, sp),
+        ):
+            length = word(a, b, f, s, cp)
+            if length < best:
+                best = length
     return best
 
 
