@@ -29,6 +29,7 @@ traceback.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
@@ -80,7 +81,7 @@ heuristics h' (the paper's three choices):
      d_s the median gap between neighbouring obstacles
 
 scenario file (JSON, lengths in metres, angles in degrees):
-  {"L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
+  {"L": 1.2, "half_width": 0.35, "max_steer_deg": 45, "reverse": false,
    "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
    "bounds": [xmin, ymin, xmax, ymax], "obstacles": [[[x, y], ...], ...]}
   optional, the body: "front_overhang": 0.3, "rear_overhang": 0.5, "rectangle": true
@@ -120,6 +121,10 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
+REVERSE_HELP = """beyond the paper: the robot may also drive backwards (the scenario's "reverse": true); \
+the default planner reverses where it pays (issue 26), the paper's search stays forward-only"""
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``segplan`` argument parser (sub-commands ``plan``, ``draw`` and ``scenarios``)."""
     parser = _Parser(
@@ -130,7 +135,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "plan",
         help="plan a path on a scenario file and print (or draw) it",
-        description="Plan a forward-only path from the scenario's start pose to its goal pose.",
+        description="Plan a path from the scenario's start pose to its goal pose (forward unless --reverse).",
         epilog=PLAN_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -156,6 +161,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="safety margin in metres beyond half_width, honoured by the search and the "
         "refinement (default 0: the paper's model)",
     )
+    p.add_argument("--reverse", action="store_true", help=REVERSE_HELP)
     p.add_argument("--heuristic", choices=("a", "b", "c"), default="a", help="h' of the search (default: a)")
     p.add_argument(
         "--cost",
@@ -344,25 +350,19 @@ def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
         metavar="M",
         help=f"largest sample spacing along the rear path, m (default {DEFAULT_STEP:g})",
     )
-    for name, unit, what in (
-        ("v_max", "m/s", "speed of the rear point"),
-        ("a_max", "m/s^2", "acceleration and braking"),
-        ("a_lat_max", "m/s^2", "lateral acceleration"),
+    for name, key, unit, what in (
+        ("v_max", "v_max", "m/s", "speed of the rear point"),
+        ("a_max", "a_max", "m/s^2", "acceleration and braking"),
+        ("a_lat_max", "a_lat_max", "m/s^2", "lateral acceleration"),
+        ("steer_rate_max", "steer_rate_max_deg", "deg/s", "steering rate"),
     ):
         g.add_argument(
             "--" + name.replace("_", "-"),
             type=_positive,
-            default=CLI_LIMITS[name],
+            default=CLI_LIMITS[key],
             metavar=unit.upper().replace("/", "_").replace("^2", "2"),
-            help=f"largest {what}, {unit} (default {CLI_LIMITS[name]:g})",
+            help=f"largest {what}, {unit} (default {CLI_LIMITS[key]:g})",
         )
-    g.add_argument(
-        "--steer-rate-max",
-        type=_positive,
-        default=CLI_LIMITS["steer_rate_max_deg"],
-        metavar="DEG_S",
-        help=f"largest steering rate, deg/s (default {CLI_LIMITS['steer_rate_max_deg']:g})",
-    )
 
 
 def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
@@ -677,6 +677,8 @@ def _main(argv: list[str] | None) -> int:
     except ScenarioError as exc:
         return _error(str(exc))
     name = getattr(scenario, "name", "") or Path(args.scenario).stem
+    if getattr(args, "reverse", False) and isinstance(scenario, Scenario):
+        scenario = dataclasses.replace(scenario, robot=dataclasses.replace(scenario.robot, reverse=True))
     if args.command == "draw":
         return _draw_floor(args, scenario, name)
     return _plan(args, scenario, name)

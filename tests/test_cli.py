@@ -276,7 +276,7 @@ def test_scenarios_exports_one_to_edit_and_plan(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["scenarios", "nope"], "no shipped scenario 'nope'; the shipped ones: empty_room,"),
+        (["scenarios", "nope"], "no shipped scenario 'nope'; the shipped ones: dead_end_bay, empty_room,"),
         (["scenarios", "--export", "x.json"], "--export needs the NAME"),
         (["scenarios", "turn_around", "--export", "{exists}"], "the file exists"),
         (["draw", "nope.json"], "nope.json: cannot read"),

@@ -29,6 +29,7 @@ from segplan.viz.metrics import measure_scenario_path, plan_poses
 OPTION_TESTS = {
     "scenario": "test_scenario_argument_picks_the_floor",
     "planner": "test_planner_paper_vs_lattice",
+    "reverse": "test_reverse_lets_the_robot_back_up",
     "clearance": "test_clearance_moves_the_plan_away_from_obstacles",
     "heuristic": "test_heuristic_changes_the_search",
     "cost": "test_cost_changes_the_search",
@@ -442,6 +443,13 @@ def test_nav_path_writes_the_time_laws_poses_stamped(capsys, tmp_path, suffix):
     assert status == 0 and "trajectory" not in only and alone.read_bytes() == path.read_bytes()
     assert main(["plan", "fig5_example1", "--nav-path", str(alone)]) == 0
     assert f"nav path    {alone} ({len(message['poses'])} poses in frame 'map'" in capsys.readouterr().out
+
+
+def test_reverse_lets_the_robot_back_up(capsys, spy):
+    status, _ = run_json(capsys, "single_obstacle", "--planner", "paper")
+    assert status == 0 and spy[-1]["scenario"].robot.reverse is False
+    status, _ = run_json(capsys, "single_obstacle", "--planner", "paper", "--reverse")
+    assert status == 0 and spy[-1]["scenario"].robot.reverse is True
 
 
 # -- a ROS map as SCENARIO (issue 27) ------------------------------------------------------

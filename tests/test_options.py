@@ -214,7 +214,8 @@ def test_a_plans_summary_is_plain_json_of_its_fields():
         assert d[name] == getattr(plan, name), name
     assert plan.refinement is not None and d["refinement"] == dataclasses.asdict(plan.refinement)
     assert d["options"] == plan.options.to_dict() and d["L"] == plan.unions[0].L
-    assert len(d) == 18
+    assert d["directions"] == [1] * len(plan.unions) and d["cusps"] == []  # issue 26: forward only
+    assert len(d) == 20
 
 
 def test_the_search_limits_are_checked_naming_the_argument():

@@ -6,8 +6,9 @@ the front wheel). Its real plan section, the "curved rectangle" of Fig. 2, is mo
 as the set of points within ``half_width`` of that segment; so the segment is planned
 among obstacles *enlarged off-line* by ``half_width`` ("the processing of the model of
 the surroundings, with obstacles appropriately enlarged, is performed off-line"), and
-the walls of a rectangular world move inwards by ``half_width``. Forward motion only,
-with the steering angle of the front wheel bounded by ``max_steer``: the rear path's
+the walls of a rectangular world move inwards by ``half_width``. Forward motion only (the
+paper's AGV; ``Robot(..., reverse=True)`` lets the default planner reverse too, beyond the
+paper, issue 26), with the steering angle of the front wheel bounded by ``max_steer``: the rear path's
 curvature stays within ``tan(max_steer) / L`` (bicycle model).
 
 Obstacles are simple polygons, ``(k, 2)`` vertex arrays or shapely ``Polygon`` /
@@ -24,6 +25,7 @@ Scenario files (JSON)
     {"name": "...", "description": "...",            (optional strings)
      "L": 1.2, "half_width": 0.35, "max_steer_deg": 45,
      "front_overhang": 0.3, "rear_overhang": 0.5, "rectangle": true,  (optional: the body)
+     "reverse": true,                                (optional: may the robot reverse?)
      "start": [x, y, theta_deg], "goal": [x, y, theta_deg],
      "bounds": [xmin, ymin, xmax, ymax],             (or null / absent: no walls)
      "obstacles": [[[x, y], [x, y], [x, y], ...], ...]}
@@ -31,9 +33,9 @@ Scenario files (JSON)
 Lengths in metres. **Angles in files are degrees**: ``theta`` of start and goal and
 ``max_steer_deg``; the Python API (``Pose``, ``Robot.max_steer``) uses radians.
 Required keys: ``L``, ``start``, ``goal``, ``obstacles``; defaults: ``half_width`` 0,
-``max_steer_deg`` 45, ``bounds`` none, ``front_overhang`` and ``rear_overhang`` 0 and
-``rectangle`` false (the body, :class:`Robot`; written only when set). Any other key is
-an error, so is a repeated key.
+``max_steer_deg`` 45, ``bounds`` none, ``front_overhang`` and ``rear_overhang`` 0,
+``rectangle`` false (the body, :class:`Robot`) and ``reverse`` false (each written only
+when set). Any other key is an error, so is a repeated key.
 Polygons may be given in either orientation and are stored counter-clockwise; nothing
 else is changed. A polygon may be non-convex (an L-shaped rack, a concave bay: see
 ``scenarios/beyond_the_paper/l_shaped_rack.json``); it is split into convex pieces. A closing copy of
@@ -99,7 +101,7 @@ MIN_LENGTH = 1e-6
 REQUIRED_KEYS = ("L", "start", "goal", "obstacles")
 #: The body's keys (:class:`Robot`; beyond the paper), optional, saved only when set.
 FOOTPRINT_KEYS = ("front_overhang", "rear_overhang", "rectangle")
-OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "bounds", *FOOTPRINT_KEYS)
+OPTIONAL_KEYS = ("name", "description", "half_width", "max_steer_deg", "reverse", "bounds", *FOOTPRINT_KEYS)
 
 
 class ScenarioError(ValueError):
@@ -140,6 +142,10 @@ class Robot:
         (the tightest body of the form "segment enlarged by a disk", the only one the
         off-line enlargement can serve): the planner's test is then conservative, and
         pessimistic only by the two round caps beyond its ends.
+    reverse : bool
+        May the robot drive backwards (beyond the paper, issue 26)? False: the paper's
+        forward-only AGV. True: the default planner may also traverse a union backwards
+        (the lattice planner, :mod:`segplan.planning.lattice.astar`), changing direction at nodes.
 
     Raises
     ------
@@ -166,8 +172,11 @@ class Robot:
     front_overhang: float = 0.0
     rear_overhang: float = 0.0
     rectangle: bool = False
+    reverse: bool = False
 
     def __post_init__(self):
+        if not isinstance(self.reverse, bool):
+            raise ValueError(f"reverse must be True or False, got {self.reverse!r}")
         object.__setattr__(self, "L", check_length(self.L, "L"))
         object.__setattr__(self, "half_width", finite_number(self.half_width, "half_width", minimum=0.0))
         steer = finite_number(self.max_steer, "max_steer")
@@ -300,6 +309,8 @@ class Scenario:
         for key in FOOTPRINT_KEYS:  # written only when set: the paper's robot's files unchanged
             if getattr(self.robot, key):
                 out[key] = getattr(self.robot, key)
+        if self.robot.reverse:
+            out["reverse"] = True
         out["start"] = [self.start.x, self.start.y, math.degrees(self.start.theta)]
         out["goal"] = [self.goal.x, self.goal.y, math.degrees(self.goal.theta)]
         out["bounds"] = None if self.bounds is None else list(self.bounds)
@@ -588,8 +599,11 @@ def scenario_from_dict(data, source: str = "<dict>", path: Path | None = None) -
         if not isinstance(data["rectangle"], bool):
             raise ScenarioError(f"{source}: rectangle must be true or false, got {_brief(data['rectangle'])}")
         body["rectangle"] = data["rectangle"]
+    reverse = data.get("reverse", False)
+    if not isinstance(reverse, bool):
+        raise ScenarioError(f"{source}: reverse must be true or false, got {_brief(reverse)}")
     try:
-        robot = Robot(L, half_width, math.radians(steer), **body)
+        robot = Robot(L, half_width, math.radians(steer), **body, reverse=reverse)
     except ValueError as exc:
         raise ScenarioError(f"{source}: {exc}") from None
     poses = {}

@@ -17,15 +17,27 @@
    one about as often as not, see :class:`segplan.planning.options.DefaultOptions`).
 
 Both searches share the context's one validity checker.
+
+A robot that may reverse (``Robot(..., reverse=True)``, issue 26): the paper's search stays
+forward-only; the lattice reverses where it pays; plans are compared by the lattice's cost
+(:func:`segplan.planning.lattice.reverse.weighted_cost`: reverse links weighted, cusps
+penalised) and the lower bound of ``near_lower_bound`` is the Reeds–Shepp length. The
+refinement refines each same-direction run of a plan on its own
+(:func:`segplan.planning.lattice.reverse.by_runs`): the cusps stay where the lattice put them.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
+
 from ..model.pose import show_pose
 from .context import PlanningContext
 from .dubins import dubins_length_scalar
+from .lattice.reverse import by_runs, weighted_cost
 from .options import DefaultOptions
-from .plan import NoPathError, Plan
+from .plan import NoPathError, Plan, Refinement
+from .reeds_shepp import reeds_shepp_length
 from .refine import refine_with
 from .stages import lattice_stage, paper_search
 
@@ -43,7 +55,9 @@ def lattice_budget(ctx: PlanningContext, options: DefaultOptions, paper: Plan | 
         return expansions
     expansions = min(expansions, options.lattice_after_paper)
     s, g = ctx.scenario.start, ctx.scenario.goal
-    bound = dubins_length_scalar(s.x, s.y, s.theta, g.x, g.y, g.theta, ctx.scenario.robot.min_turning_radius)
+    robot = ctx.scenario.robot
+    length = reeds_shepp_length if robot.reverse else dubins_length_scalar
+    bound = length(s.x, s.y, s.theta, g.x, g.y, g.theta, robot.min_turning_radius)
     if paper.cost <= options.near_lower_bound * bound:
         return 0
     return expansions
@@ -72,15 +86,57 @@ def default_pipeline(ctx: PlanningContext, options: DefaultOptions) -> Plan:
                 ctx.counters["stopped_by_time"] += 1
     # the shorter first (the paper's on a tie): it is the answer without refinement, and the
     # one refined first when time is short
-    found.sort(key=lambda pair: pair[0].cost)
+    cost = _plan_cost(ctx, options)
+    found.sort(key=lambda pair: cost(pair[0]))
     if options.refine is None:
         return found[0][0]
     # 3. the refinement of each, the shorter refined plan kept (the first on a tie)
     ctx.report("refine", "start")
-    refined = [refine_with(plan, links, options.refine, deadline=ctx.deadline) for plan, links in found]
-    best = min(refined, key=lambda plan: plan.cost)
+    refined = [_refine(plan, links, options, ctx) for plan, links in found]
+    best = min(refined, key=cost)
     ctx.report("refine", "done", cost=best.cost)
     return best
+
+
+def _plan_cost(ctx: PlanningContext, options: DefaultOptions):
+    """How plans are compared: LONGD [1] (``Plan.cost``); for a robot that may reverse, the
+    lattice's cost (:func:`segplan.planning.lattice.reverse.weighted_cost`)."""
+    if not ctx.scenario.robot.reverse:
+        return lambda plan: plan.cost
+    factor, penalty = options.lattice.reverse_factor, options.lattice.cusp_penalty * ctx.scenario.robot.L
+    return lambda plan: weighted_cost(plan, factor, penalty)
+
+
+def _refine(plan: Plan, links, options: DefaultOptions, ctx: PlanningContext) -> Plan:
+    """:func:`segplan.planning.refine.refine_with` of ``plan``; of each same-direction run of a
+    plan with reverse links (:func:`segplan.planning.lattice.reverse.by_runs`), what was done
+    summed up in one :class:`segplan.planning.plan.Refinement`."""
+    if not plan.directions:
+        return refine_with(plan, links, options.refine, deadline=ctx.deadline)
+    done: list[Refinement] = []
+
+    def step(part: Plan) -> Plan:
+        out = refine_with(part, links, options.refine, deadline=ctx.deadline)
+        done.append(out.refinement)
+        return out
+
+    out = by_runs(plan, step)
+    total = {
+        f.name: sum(getattr(r, f.name) for r in done)
+        for f in dataclasses.fields(Refinement)
+        if f.name in ("shortcuts", "splits", "moves", "updates", "checked", "seconds")
+    }
+    info = Refinement(
+        cost_before=plan.cost,
+        cost_after=out.cost,
+        nodes_before=len(plan.nodes),
+        nodes_after=len(out.nodes),
+        stopped=any(r.stopped for r in done),
+        **total,
+    )
+    if not out.cost < plan.cost or not math.isfinite(out.cost):  # keep the search's chain
+        out, info = plan, dataclasses.replace(info, cost_after=plan.cost, nodes_after=len(plan.nodes))
+    return dataclasses.replace(out, refinement=info, seconds=plan.seconds + info.seconds)
 
 
 def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOptions) -> NoPathError:

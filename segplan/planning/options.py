@@ -354,6 +354,25 @@ class LatticeOptions:
         When each of the lattice's mechanisms starts and how much it does
         (:class:`segplan.planning.schedule.Schedule`, each field with its provenance);
         default :data:`segplan.planning.schedule.SCHEDULE`.
+    reverse_factor : float
+        A robot that may reverse (``Robot(..., reverse=True)``, issue 26; unused otherwise):
+        a reverse link costs this times its LONGD in the search (> 0; ``h'`` is scaled by
+        ``min(1, reverse_factor)`` so that it stays a lower bound). 1.25 with
+        ``cusp_penalty`` 0.5: measured on 2026-12-03 by ``benchmarks/reverse_defaults.py``
+        (16 floors: the dead-end bay, 3 reverse parkings into it, 2 K-turns in corridors
+        about two turning radii wide, chapter 9's natural floors 0-9; every pair of
+        ``reverse_factor`` 1, 1.25, 1.5 and ``cusp_penalty`` 0.5, 2, 4 L; all 16 solved by
+        every pair). The pairs with penalty 0.5 L gave the shortest plans (front-wheel
+        lengths 169.8 m in all, against 171.4-183.5 m with 2 or 4 L; 10 cusps against 7-9)
+        and the least CPU time (largest per plan 2.1-2.4 s, the K-turns, against 3.5-7.0
+        s); of those, 1.25 the least (median 0.034 s, largest 2.06 s; 1.5 the same
+        lengths; 1, free reversing, 0.8 % longer and a fifth of the length driven
+        backwards). The bay: 11.85 m, one cusp.
+    cusp_penalty : float
+        A robot that may reverse: the cost of each change of direction, units of ``L``
+        (>= 0), in the search and when the default planner compares its plans. 0.5: see
+        ``reverse_factor`` (a larger penalty took out one cusp in 16 floors, at 1.4 % more
+        length and 1.7 times the largest CPU time).
     """
 
     resolution: float | None = None
@@ -365,6 +384,8 @@ class LatticeOptions:
     escapes: bool = True
     max_expansions: int = 200_000
     schedule: Schedule = SCHEDULE
+    reverse_factor: float = 1.25
+    cusp_penalty: float = 0.5
 
     def __post_init__(self):
         # the checks of lattice_options() that need no scenario (it adds resolution <= L)
@@ -379,6 +400,8 @@ class LatticeOptions:
         )
         _set(self, "goal_radius", check_option(self.goal_radius, "goal_radius", 0.0, allow_none=True))
         _set(self, "cell", check_option(self.cell, "cell", 0.0, allow_none=True))
+        _set(self, "reverse_factor", check_option(self.reverse_factor, "reverse_factor", 0.0))
+        _set(self, "cusp_penalty", check_option(self.cusp_penalty, "cusp_penalty", 0.0, lo_ok=True))
         _set(self, "max_expansions", _check_expansions(self.max_expansions))
         if not isinstance(self.schedule, Schedule):
             raise ValueError(

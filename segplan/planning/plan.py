@@ -49,6 +49,8 @@ __all__ = [
     "check_option",
     "direct_plan",
     "lattice_plan",
+    "link_ends",
+    "plain_directions",
     "plan_from_record",
     "plan_record",
     "union_longd",
@@ -182,6 +184,14 @@ class Plan:
         ``"time"`` where the call's ``time_limit`` cut a stage short and the plan is the best
         found by then (the default planner's lattice search stopped after the paper's search
         had found a plan, or a refinement stopped: ``refinement.stopped``); None otherwise.
+    directions : tuple of int
+        Beyond the paper (issue 26, a robot that may reverse): ``()`` when every union is
+        driven forwards (every plan of a forward-only robot), else one entry per union, ``1``
+        forwards or ``-1`` backwards. A backward link ``i`` is the forward union from
+        ``nodes[i + 1]`` to ``nodes[i]`` traversed backwards (``unions[i].p0`` is then
+        ``nodes[i + 1]``): the same curve, the same front-wheel length LONGD [1]
+        (:mod:`segplan.planning.lattice.reverse`). :attr:`link_directions` always has one
+        entry per union; :attr:`cusps` lists the nodes where the direction changes.
     """
 
     nodes: tuple
@@ -202,6 +212,18 @@ class Plan:
     planner: str | None = None
     options: object = field(default=None, compare=False)
     stopped: str | None = None
+    directions: tuple = ()
+
+    @property
+    def link_directions(self) -> tuple:
+        """The direction of each union: ``1`` forwards, ``-1`` backwards (:attr:`directions`)."""
+        return self.directions or (1,) * len(self.unions)
+
+    @property
+    def cusps(self) -> tuple:
+        """Indices of the nodes where the robot changes direction (stops and shifts gear)."""
+        d = self.directions
+        return tuple(i for i in range(1, len(d)) if d[i] != d[i - 1])
 
     def to_dict(self) -> dict:
         """Plain-JSON summary (angles in degrees, like scenario files; ``L`` the robot length of
@@ -225,6 +247,8 @@ class Plan:
             "options": None if self.options is None else self.options.to_dict(),
             "stopped": self.stopped,
             "L": self.unions[0].L if self.unions else None,
+            "directions": list(self.link_directions),
+            "cusps": list(self.cusps),
         }
 
     # -- the plan as a controller reads it (segplan.planning.trajectory) -----------------------
@@ -248,6 +272,7 @@ class Plan:
             Read-only arrays (``.x``, ``.y``, ``.theta``, ``.kappa``, ...), ``.to_csv(path)``,
             ``.nav_path()``, ``.save_nav_path(path)``.
         """
+        self._forward_only("poses")
         return sample_path(self.unions, step)
 
     def trajectory(
@@ -286,7 +311,17 @@ class Plan:
             The samples with ``t``, ``v``, ``a``; ``total_time``, ``jump_time`` (what the
             jumps cost), ``dwell_time``, ``jumps``.
         """
+        self._forward_only("trajectory")
         return time_law(self.unions, v_max, a_max, a_lat_max, steer_rate_max, step=step, jump_tol=jump_tol)
+
+    def _forward_only(self, what: str) -> None:
+        """ValueError for a plan with reverse links: ``what`` samples the unions as one
+        forward chain (the stop and the change of gear at a cusp are issue 26's next step)."""
+        if self.directions:
+            raise ValueError(
+                f"Plan.{what}: the plan reverses (cusps at nodes {list(self.cusps)}); sampling and "
+                "timing a plan with reverse links is not implemented yet (issue 26)"
+            )
 
     def facts(self, max_steer: float | None = None) -> PlanFacts:
         """The steering angle at each node on each side and its jumps; the largest curvature,
@@ -326,19 +361,40 @@ class Plan:
         return plan_from_record(record)
 
 
-def lattice_plan(start, unions, kinds, cost, search_cost, expanded, generated, seconds, stats) -> Plan:
-    """A :class:`Plan` of the lattice planner (``version="lattice"``, Dubins h', LONGD cost):
-    the nodes are ``start`` and the unions' ends; ``stats`` the workspace's counters
+def link_ends(start, unions, directions=()) -> tuple:
+    """The nodes of a chain of ``unions`` from ``start``: each union's far end in its
+    direction (``p1`` forwards, ``p0`` backwards; ``directions`` as :attr:`Plan.directions`)."""
+    if not directions:
+        return (start,) + tuple(u.p1 for u in unions)
+    return (start,) + tuple(u.p1 if d > 0 else u.p0 for u, d in zip(unions, directions, strict=True))
+
+
+def plain_directions(directions) -> tuple:
+    """``directions`` as :attr:`Plan.directions` stores them: ``()`` when every link is forwards."""
+    directions = tuple(int(d) for d in directions)
+    return () if all(d == 1 for d in directions) else directions
+
+
+def lattice_plan(
+    start, unions, kinds, cost, search_cost, expanded, generated, seconds, stats, *, directions=(),
+    heuristic="dubins",
+) -> Plan:  # fmt: skip
+    """A :class:`Plan` of the lattice planner (``version="lattice"``, LONGD cost; ``heuristic``
+    the lower bound of its h', ``"dubins"`` or, for a robot that may reverse,
+    ``"reeds-shepp"``): the nodes are ``start`` and the unions' far ends (:func:`link_ends`;
+    ``directions`` as :attr:`Plan.directions`); ``stats`` the workspace's counters
     (``collision_checks``, ``exact_checks``)."""
+    directions = plain_directions(directions)
     return Plan(
-        nodes=(start,) + tuple(u.p1 for u in unions),
+        directions=directions,
+        nodes=link_ends(start, unions, directions),
         unions=tuple(unions),
         cost=cost,
         search_cost=search_cost,
         expanded=expanded,
         generated=generated,
         seconds=seconds,
-        heuristic="dubins",
+        heuristic=heuristic,
         cost_kind="longd",
         version="lattice",
         collision_checks=stats.collision_checks,
@@ -449,8 +505,16 @@ def plan_from_record(record: Mapping) -> Plan:
     unions = tuple(Union.from_state(u) for u in _field(exact, "unions", list, "a list"))
     if len(nodes) != len(unions) + 1:
         raise ValueError(f"the saved plan has {len(nodes)} nodes for {len(unions)} unions")
-    for i, u in enumerate(unions):
-        if u.p0 != nodes[i] or u.p1 != nodes[i + 1]:
+    directions = record.get("directions", [1] * len(unions))
+    if not (
+        isinstance(directions, list)
+        and len(directions) == len(unions)
+        and all(d in (1, -1) and not isinstance(d, bool) for d in directions)
+    ):
+        raise ValueError(f"the saved plan's 'directions' must be 1 or -1 for each of {len(unions)} unions")
+    for i, (u, d) in enumerate(zip(unions, directions, strict=True)):
+        ends = (u.p0, u.p1) if d == 1 else (u.p1, u.p0)
+        if ends != (nodes[i], nodes[i + 1]):
             raise ValueError(f"the saved plan's union {i} does not join nodes {i} and {i + 1}")
     number, count, text = (int, float), int, str
     iterations = _field(record, "iterations", list, "a list of integers")
@@ -491,4 +555,5 @@ def plan_from_record(record: Mapping) -> Plan:
         planner=planner,
         options=None if options is None else options_from_dict(options),
         stopped=stopped,
+        directions=plain_directions(directions),
     )

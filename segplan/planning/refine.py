@@ -154,6 +154,8 @@ def refine_with(
         raise ValueError(f"options must be RefineOptions, got {options!r}")
     if plan.refinement is not None:
         raise ValueError("plan is already refined")
+    if plan.directions:  # a chain of forward unions only (issue 26: the default planner refines by runs)
+        raise ValueError("plan has reverse links: refine each run of one direction (lattice.reverse.by_runs)")
     t0 = time.perf_counter()
     r = _Refiner(links, options, deadline)
     nodes = list(plan.nodes)

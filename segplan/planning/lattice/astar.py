@@ -31,6 +31,14 @@ steering limit):
   without a plan, the coarse lattice's cost-to-go joins them
   (:class:`segplan.planning.lattice.guide.Guide`) with the smaller weight
   :attr:`Schedule.guided_weight`.
+* **Reverse** (a robot that may reverse, issue 26; :mod:`segplan.planning.lattice.reverse`):
+  every state also has the reverse links of its heading, a state's heading index says its
+  last direction (``h + NH`` after a reverse link), edges cost ``reverse_factor`` times
+  their LONGD backwards and ``cusp_penalty`` more at a change of direction, the direct
+  union to the goal is tried both ways, and ``h'`` uses the Reeds–Shepp length instead of
+  Dubins'. The goal's approach tree (forward) still joins states near the goal, but its
+  enclosure test, which knows forward approaches only, does not stop the search, and the
+  coarse lattice's cost-to-go (forward) does not guide it.
 
 When each mechanism starts and how much it does: :class:`segplan.planning.schedule.Schedule`.
 """
@@ -47,13 +55,15 @@ from ...model.pose import Pose, wrap_ieee
 from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..plan import Plan, lattice_plan, union_longd
+from ..reeds_shepp import reeds_shepp_length
 from ..schedule import SCHEDULE, Schedule
 from .approach import GoalApproach
 from .clearance import union_free_near, union_free_screened
 from .edges import LazyEdges
-from .frame import LatticeFrame, heading_angles
+from .frame import NH, LatticeFrame, heading_angles
 from .guide import Guide
-from .primitives import primitive_set
+from .primitives import max_reach, primitive_set
+from .reverse import DirectionTables
 
 __all__ = ["GOAL", "LatticeAStar"]
 
@@ -96,6 +106,9 @@ class LatticeAStar:
         :meth:`screen_edge` and :meth:`check_edge`), :class:`GoalApproach`, :class:`Guide`.
     progress : callable, optional
         Called with the expansions so far at every look at the clock (it only watches).
+    reverse_factor, cusp_penalty : float
+        For a robot that may reverse (``scenario.robot.reverse``): the factor on a reverse
+        link's LONGD and the cost of a change of direction (m); unused otherwise.
     """
 
     def __init__(
@@ -116,6 +129,8 @@ class LatticeAStar:
         approach: GoalApproach | None = None,
         guide: Guide | None = None,
         progress=None,
+        reverse_factor: float = 1.0,
+        cusp_penalty: float = 0.0,
     ):
         self.robot = robot = scenario.robot
         self.ws, self.ex, self.grid, self.field = ws, links, grid, field
@@ -135,8 +150,19 @@ class LatticeAStar:
             gy,
             wrap_ieee(self.goal.theta - self.start.theta),
         )  # lattice frame
-        self.fine = ps.fine_points()  # finer points for primitives close to obstacles
-        _, cells, self.delta, self.step, self.cost = ps.heading_tables(grid.cell)
+        self.reverse = robot.reverse
+        self.reverse_factor, self.cusp_penalty = reverse_factor, cusp_penalty
+        self.bound_factor = min(1.0, reverse_factor)  # h' stays a lower bound of every link's cost
+        if self.reverse:
+            reach = max_reach(robot.L, robot.max_steer, r)
+            t = DirectionTables.build(ps, grid.cell, reverse_factor, cusp_penalty, reach)
+            self.edge_prims, self.fine, self.delta, self.step = t.edges, t.fine, t.delta, t.step
+            self.cost, self.length, cells = t.cost, t.length, t.cells
+        else:
+            self.fine = ps.fine_points()  # finer points for primitives close to obstacles
+            _, cells, self.delta, self.step, self.cost = ps.heading_tables(grid.cell)
+            self.edge_prims = [[(p, False) for p in prims] for prims in self.prims]
+            self.length = self.cost
         self.offsets = [i * grid.ny + j for i, j in cells]  # flat-index offsets in this grid
         # per heading h1: (h0, m, di, dj) of the primitives that end at heading h1
         self.into_steps: list = [[] for _ in self.step]
@@ -155,8 +181,16 @@ class LatticeAStar:
 
     # -- the lattice on the grid ---------------------------------------------------------------
     def union(self, key, m: int) -> Union:
-        """The union of primitive ``m`` from state ``key`` (:meth:`LatticeFrame.union`)."""
-        return self.frame.union(key, self.prims[key[2]][m])
+        """The union of edge ``m`` from state ``key`` (:meth:`LatticeFrame.union`): its
+        primitive's, from the far end for a reverse edge (:mod:`segplan.planning.lattice.reverse`)."""
+        p, back = self.edge_prims[key[2]][m]
+        if back:
+            return self.frame.union((key[0] - p.di, key[1] - p.dj, p.h0), p)
+        return self.frame.union(key, p)
+
+    def backed(self, key) -> bool:
+        """Was state ``key`` reached by a reverse link?"""
+        return key[2] >= NH
 
     def screen_edge(self, edge) -> tuple[bool, bool]:
         """The grid's screen of primitive ``m`` from state ``key`` (``edge = (key, m)``, the
@@ -185,36 +219,97 @@ class LatticeAStar:
         distance, and of the coarse lattice's cost-to-go once built (lattice frame; ``hi``
         the heading's index)."""
         gx, gy, gth = self.goal_l
+        if self.reverse:
+            return self.weight * self.bound_of(x, y, hi % NH, hi >= NH, {})
         b = max(dubins_length_scalar(x, y, _ANGLES[hi], gx, gy, gth, self.R), self.field.lower(x, y))
         return self.weight * self.guide.raise_bound(x, y, hi, b)
+
+    def bound_of(self, x: float, y: float, hi: int, back: bool, rs_known: dict) -> float:
+        """A robot that may reverse: a lower bound of the cost to the goal from ``(x, y)``,
+        heading index ``hi`` (lattice frame), after a reverse link if ``back``, else after a
+        forward one; ``rs_known`` keeps the Reeds–Shepp lengths computed, by ``(x, y, hi)``.
+
+        A plan from there either keeps the last direction to the goal, or changes it at least
+        once. Kept forwards, its cost is at least the Dubins length to the goal; kept
+        backwards, ``reverse_factor`` times the Dubins length from the goal back to the pose
+        (a reverse path is a forward path driven backwards in time); with a change, at least
+        ``cusp_penalty`` plus ``min(1, reverse_factor)`` times the Reeds–Shepp length. Each
+        length is at least the grid distance
+        (:class:`segplan.planning.lattice.clearance.DistanceField`), and each bounds LONGD
+        [1] from below (:mod:`segplan.planning.dubins`, :mod:`segplan.planning.reeds_shepp`);
+        the bound is the smaller of the kept direction's and the change's. The Reeds–Shepp
+        length, the dearest to compute, only where the change's bound with the straight-line
+        distance in its place is below the kept direction's. (Computing it only when a state
+        leaves the open list, the straight-line bound until then, expanded 18 % more states
+        on a K-turn and took longer: measured on ``benchmarks/reverse_defaults.py``'s turn-1
+        and the bay.)"""
+        kept, rough = self._kept_and_rough(x, y, hi, back)
+        if not rough < kept:
+            return kept
+        gx, gy, gth = self.goal_l
+        rs = rs_known.get((x, y, hi))
+        if rs is None:
+            rs = rs_known[x, y, hi] = reeds_shepp_length(x, y, _ANGLES[hi], gx, gy, gth, self.R)
+        return min(kept, self.cusp_penalty + self.bound_factor * max(rs, self.field.lower(x, y)))
+
+    def _kept_and_rough(self, x: float, y: float, hi: int, back: bool) -> tuple[float, float]:
+        """:meth:`bound_of`'s bound of the kept direction, and of a change with the straight-line
+        distance for the Reeds–Shepp length."""
+        gx, gy, gth = self.goal_l
+        th, R = _ANGLES[hi], self.R
+        lower = self.field.lower(x, y)
+        if back:
+            kept = self.reverse_factor * max(dubins_length_scalar(gx, gy, gth, x, y, th, R), lower)
+        else:
+            kept = max(dubins_length_scalar(x, y, th, gx, gy, gth, R), lower)
+        return kept, self.cusp_penalty + self.bound_factor * max(math.hypot(gx - x, gy - y), lower)
 
     def h_state(self, key, h_known: dict) -> float:
         """:meth:`h` of lattice state ``key``, computed once (kept in ``h_known``: ``h'`` of a
         state is the same from every parent)."""
         hs = h_known.get(key)
+        if hs is None and self.reverse:  # the two directions of a state share its Reeds-Shepp length
+            i, j, h = key
+            rs_known = h_known.setdefault("reeds_shepp", {})
+            hs = h_known[key] = self.weight * self.bound_of(i * self.r, j * self.r, h % NH, h >= NH, rs_known)
+            return hs
         if hs is None:
             hs = h_known[key] = self.h(key[0] * self.r, key[1] * self.r, key[2])
         return hs
 
     # -- the goal ------------------------------------------------------------------------------
-    def found(self, cost: float, parent: tuple) -> None:
-        """A way to the goal for ``cost``: ``parent = (state, unions from it to the goal)``."""
+    def found(self, cost: float, parent: tuple, directions: tuple = ()) -> None:
+        """A way to the goal for ``cost``: ``parent = (state, unions from it to the goal)``,
+        ``directions`` those of the unions (``()``: forwards)."""
         self.goal_g, self.goal_parent = cost, parent
+        self.goal_directions = directions
         heapq.heappush(self.heap, (self.goal_g, -1, GOAL))
 
     def try_goal(self, key, P, g: float) -> None:
-        """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the goal."""
+        """Analytic expansion: the direct union from state ``key`` (world pose ``P``) to the
+        goal; for a robot that may reverse, also the union from the goal to ``P`` driven
+        backwards, each with the cost of its direction (:mod:`segplan.planning.lattice.reverse`)."""
         if ("final", key) in self.banned:
             return
-        u = self.ex.union(Pose(*P), self.goal)
+        if not self.reverse:
+            self.try_final(key, self.ex.union(Pose(*P), self.goal), g, 1.0)
+            return
+        back = self.backed(key)
+        self.try_final(key, self.ex.union(Pose(*P), self.goal), g + back * self.cusp_penalty, 1.0)
+        rf, turn = self.reverse_factor, (not back) * self.cusp_penalty
+        self.try_final(key, self.ex.union(self.goal, Pose(*P)), g + turn, rf, -1)
+
+    def try_final(self, key, u, g: float, factor: float, direction: int = 1) -> None:
+        """The final union ``u`` (or None) from state ``key``, of cost ``g`` plus ``factor`` times
+        its LONGD, into the open list if it is free and keeps the steering limit."""
         if u is None or not self.ws.curvature_ok(u):
             return
         # LONGD before the screen only where it may prune (the link model keeps it per union)
-        if self.goal_g < math.inf and not g + self.ex.link_cost(u) < self.goal_g:
+        if self.goal_g < math.inf and not g + factor * self.ex.link_cost(u) < self.goal_g:
             return
         if not union_free_screened(self.grid, self.ws, u):
             return
-        self.found(g + self.ex.link_cost(u), (key, [u]))
+        self.found(g + factor * self.ex.link_cost(u), (key, [u]), () if direction == 1 else (direction,))
 
     # -- the search ----------------------------------------------------------------------------
     def run(self, max_expansions: int, deadline: float) -> tuple[str, int]:
@@ -230,12 +325,18 @@ class LatticeAStar:
         self.g = {start: 0.0}
         self.parent = {start: None}
         self.goal_g, self.goal_parent = math.inf, None
+        self.goal_directions: tuple = ()
         self.approach.reset()
         self.guide.field = None
         self.edges.reset()
         self.heap = [(self.h(0.0, 0.0, 0), 0, start)]
-        closed = set()
         counter = 1
+        if self.reverse:  # the start is reached both ways: no cusp for a first reverse link
+            back = (0, 0, NH)
+            self.g[back], self.parent[back] = 0.0, None
+            self.heap.append((self.h(0.0, 0.0, NH), 1, back))
+            counter = 2
+        closed = set()
         expanded = 0
         gx, gy, _ = self.goal_l
         self.best, best_d = start, math.hypot(gx, gy)
@@ -243,7 +344,7 @@ class LatticeAStar:
         heap, r, q, grid, edges = self.heap, self.r, self.q, self.grid, self.edges
         lower = grid.lower_blocked_flat
         stop_at = math.inf  # set when the goal looks enclosed
-        h_known: dict = {}
+        h_known: dict = {"reeds_shepp": {}}  # and h' by state
         reported = 0  # the expansions last handed to progress
         while heap:
             if expanded >= max_expansions:
@@ -278,13 +379,19 @@ class LatticeAStar:
             if expanded == 1 or hd <= self.goal_radius or expanded % self.every == 0:
                 P = self.frame.pose(key)
                 self.try_goal(key, P, g)
-            if expanded == sch.guide_after and self.goal_parent is None:
+            if expanded == sch.guide_after and self.goal_parent is None and not self.reverse:
                 self.rerank(h_known, closed)
-            if self.goal_parent is None and stop_at == math.inf and self.approach.enclosed(expanded):
+            if (
+                self.goal_parent is None
+                and stop_at == math.inf
+                and self.approach.enclosed(expanded)  # builds the approach tree when due
+                and not self.reverse  # it knows forward approaches only
+            ):
                 stop_at = expanded + sch.enclosed_expansions
             if self.approach.keys and hd <= self.goal_radius and ("final", key) not in self.banned:
                 P = P or self.frame.pose(key)
-                way = self.approach.connect(P, g, x, y, _ANGLES[h], self.goal_g)
+                gc = g + self.cusp_penalty if h >= NH else g  # the approach tree drives forwards
+                way = self.approach.connect(P, gc, x, y, _ANGLES[h % NH], self.goal_g)
                 if way is not None:
                     self.found(way[0], (key, way[1]))
             b = grid.base(i * q, j * q)
@@ -362,7 +469,7 @@ class LatticeAStar:
         so both are upper bounds of where the robot can get."""
         keys = np.array(list(self.g), dtype=float)
         distance = self.r * float(np.hypot(keys[:, 0], keys[:, 1]).max())
-        turn = float(np.abs(_ANGLES[keys[:, 2].astype(int)]).max())
+        turn = float(np.abs(_ANGLES[keys[:, 2].astype(int) % NH]).max())
         return distance, turn
 
     def chain(self, key) -> list:
@@ -377,18 +484,24 @@ class LatticeAStar:
     def make_plan(self, edges, final, expanded: int, t0: float) -> Plan:
         """A :class:`segplan.planning.plan.Plan` of lattice edges and the final unions to the goal
         (a list, or None): :func:`segplan.planning.plan.lattice_plan`."""
-        unions = []
+        unions, directions = [], []
         cost = 0.0
         for key, m in edges:
             unions.append(self.union(key, m))
-            cost += self.cost[key[2]][m]
+            directions.append(-1 if self.edge_prims[key[2]][m][1] else 1)
+            cost += self.length[key[2]][m]
         kinds = ["start"] + ["lattice"] * len(edges)
         for k, u in enumerate(final or []):
             unions.append(u)
             cost += union_longd(u)
             kinds.append("goal" if k == len(final) - 1 else "approach")
+        if final:
+            directions += list(self.goal_directions) or [1] * len(final)
         search_cost = self.goal_g if final is not None else cost
         seconds = time.perf_counter() - t0
+        start, generated, stats = Pose(*self.start), len(self.g), self.ws.stats
+        heuristic = "reeds-shepp" if self.reverse else "dubins"
         return lattice_plan(
-            Pose(*self.start), unions, kinds, cost, search_cost, expanded, len(self.g), seconds, self.ws.stats
-        )
+            start, unions, kinds, cost, search_cost, expanded, generated, seconds, stats,
+            directions=directions, heuristic=heuristic,
+        )  # fmt: skip

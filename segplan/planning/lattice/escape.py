@@ -28,7 +28,7 @@ from ...model.pose import Pose, arc_end, intrinsic_interval, wrap_ieee
 from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
-from ..plan import Plan, union_longd, unions_longd
+from ..plan import Plan, link_ends, plain_directions, union_longd, unions_longd
 from ..schedule import SCHEDULE, Schedule
 
 __all__ = [
@@ -226,9 +226,12 @@ def join_arcs(
     unions = front + tuple(inner) + back
     ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
     cost = ends + unions_longd(inner)  # the arcs' LONGD is known
+    inner_directions = (1,) * len(inner) if direct else middle.link_directions  # the arcs: forwards
+    directions = plain_directions((1,) * len(front) + tuple(inner_directions) + (1,) * len(back))
     return replace(
         template if direct else middle,
-        nodes=(Pose(*scenario.start),) + tuple(u.p1 for u in unions),
+        directions=directions,
+        nodes=link_ends(Pose(*scenario.start), unions, directions),
         unions=unions,
         cost=cost,
         search_cost=cost if direct else middle.search_cost + ends,

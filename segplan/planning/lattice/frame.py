@@ -63,13 +63,15 @@ class LatticeFrame:
         self.r, self.L = r, L
 
     def pose(self, key) -> tuple[float, float, float]:
-        """World pose of lattice state ``key = (i, j, h)``."""
+        """World pose of lattice state ``key = (i, j, h)`` (``h`` modulo :data:`NH`: the search
+        of a robot that may reverse marks a state reached backwards by ``h + NH``,
+        :mod:`segplan.planning.lattice.reverse`)."""
         i, j, h = key
         x, y = i * self.r, j * self.r
         return (
             self.x + self.c * x - self.s * y,
             self.y + self.s * x + self.c * y,
-            self.theta + float(_ANGLES[h]),
+            self.theta + float(_ANGLES[h % NH]),  # h + NH: the same heading after a reverse link
         )
 
     @staticmethod

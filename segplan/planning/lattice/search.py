@@ -27,6 +27,9 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
   of the start and into the goal, which turn closer to ``R`` than any primitive, and searches
   again between their ends; a plan far above the Dubins length tries the direct union
   between such arcs' ends.
+* **Reverse** (a robot that may reverse, issue 26: :mod:`~segplan.planning.lattice.reverse`):
+  reverse links in the A*, its costs ``reverse_factor`` and ``cusp_penalty``; the shortcuts
+  work within each run of one direction, so the cusps stay where the search put them.
 
 :func:`plan_lattice` returns a :class:`segplan.planning.plan.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines the plan
@@ -35,6 +38,7 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import replace
@@ -52,12 +56,15 @@ from .astar import LatticeAStar
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions
 from .escape import arc_pairs, improve_with_arcs, join_arcs
 from .primitives import max_reach, primitive_set
+from .reverse import by_runs
 from .shortcut import shortcut_plan
 
 __all__ = [
     "DEAD_END_TURN",
+    "CUSP_PENALTY",
     "GOAL_RADIUS",
     "LATTICE_MAX_EXPANSIONS",
+    "REVERSE_FACTOR",
     "lattice_options",
     "lattice_search",
     "plan_lattice",
@@ -69,6 +76,10 @@ LATTICE_MAX_EXPANSIONS = 200_000
 
 #: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
 GOAL_RADIUS = (2.0, 1.0)
+#: Defaults of ``reverse_factor`` and ``cusp_penalty`` (units of ``L``) of a robot that may
+#: reverse (:class:`segplan.planning.options.LatticeOptions`, where the measurement is).
+REVERSE_FACTOR = 1.25
+CUSP_PENALTY = 0.5
 
 
 def plan_lattice(
@@ -83,6 +94,8 @@ def plan_lattice(
     goal_radius: float | None = None,
     cell: float | None = None,
     escapes: bool = True,
+    reverse_factor: float = REVERSE_FACTOR,
+    cusp_penalty: float = CUSP_PENALTY,
 ):
     """Plan on the lattice of cubic-union primitives (module docstring).
 
@@ -112,6 +125,10 @@ def plan_lattice(
         ``resolution`` is given).
     escapes : bool
         Tight arcs at the ends (:mod:`segplan.planning.lattice.escape`; see :func:`lattice_search`).
+    reverse_factor, cusp_penalty : float
+        A robot that may reverse (``scenario.robot.reverse``, issue 26): the factor (> 0) on a
+        reverse link's LONGD and the cost (>= 0, units of ``L``) of a change of direction, in
+        the search (:mod:`segplan.planning.lattice.reverse`); unused for a forward-only robot.
 
     Returns
     -------
@@ -135,6 +152,8 @@ def plan_lattice(
         goal_radius=goal_radius,
         cell=cell,
         escapes=escapes,
+        reverse_factor=reverse_factor,
+        cusp_penalty=cusp_penalty,
     )
     return plan
 
@@ -150,6 +169,8 @@ def lattice_options(
     cell=None,
     escapes=True,
     schedule: Schedule = SCHEDULE,
+    reverse_factor=REVERSE_FACTOR,
+    cusp_penalty=CUSP_PENALTY,
 ):
     """The options of :func:`lattice_search` checked (ValueError naming a bad one), as a
     dict without ``escapes``; :func:`segplan.plan_scenario` checks them even where it
@@ -180,6 +201,8 @@ def lattice_options(
         "analytic_every": check_option(analytic_every, "analytic_every", 1, integer=True, lo_ok=True),
         "goal_radius": check_option(goal_radius, "goal_radius", 0.0, allow_none=True),
         "cell": check_option(cell, "cell", 0.0, allow_none=True),
+        "reverse_factor": check_option(reverse_factor, "reverse_factor", 0.0),
+        "cusp_penalty": check_option(cusp_penalty, "cusp_penalty", 0.0, lo_ok=True),
     }
 
 
@@ -259,6 +282,8 @@ def _lattice_search(
     links: LinkModel,
     schedule=SCHEDULE,
     progress=None,
+    reverse_factor=REVERSE_FACTOR,
+    cusp_penalty=CUSP_PENALTY,
 ):
     """:func:`lattice_search` without the escapes (one lattice search, its retry), its
     unions made by ``links`` (on ``links.ws``); the options checked by :func:`lattice_options`."""
@@ -305,6 +330,9 @@ def _lattice_search(
         )
     radius = goal_radius if goal_radius is not None else GOAL_RADIUS[0] * R + GOAL_RADIUS[1] * L
     banned: set = set()
+    shortcut = functools.partial(
+        shortcut_plan, ex=links, grid=grid, t0=t0, window=schedule.shortcut_window, deadline=deadline
+    )
     expanded_total = 0
     proofs: list = []  # (resolution, "exhausted" or "enclosed", approach states, reach) per try
     for k, r in enumerate(tries):
@@ -321,6 +349,8 @@ def _lattice_search(
             banned=banned,
             schedule=schedule,
             progress=progress,
+            reverse_factor=reverse_factor,
+            cusp_penalty=cusp_penalty * L,
         )
         while True:
             outcome, expanded = search.run(max_expansions - expanded_total, deadline)
@@ -331,8 +361,8 @@ def _lattice_search(
             # the certified test on every union of the plan (the screen is conservative; this
             # makes the guarantee independent of it)
             bad = [i for i, u in enumerate(plan.unions) if not ws.union_free(u)]
-            if not bad:
-                return shortcut_plan(plan, links, grid, t0, schedule.shortcut_window, deadline), links
+            if not bad:  # shortcuts within each run of one direction: the cusps stay
+                return by_runs(plan, shortcut), links
             for i in bad:  # never seen in our tests; the search runs again without them
                 banned.add(edges[i] if i < len(edges) else ("final", search.goal_parent[0]))
             expanded_total += expanded
@@ -348,7 +378,7 @@ def _lattice_search(
                     "path exists: one may need turns tighter than the lattice's, e.g. a start or "
                     "a goal facing an obstacle close by)"
                 )
-                dead_end = _dead_end(proofs)
+                dead_end = None if robot.reverse else _dead_end(proofs)
                 if dead_end:
                     what = f"{dead_end}; {what}"
             elif outcome == "enclosed":
@@ -393,8 +423,9 @@ def _dead_end(proofs: list) -> str | None:
     if turn > DEAD_END_TURN:
         return None
     return (
-        "the start looks like a dead end: the robot drives forward only (this planner has no "
-        "reverse gear) and cannot turn around in the space ahead of it, as far as the lattice "
+        "the start looks like a dead end: the robot drives forward only (no reverse gear: "
+        "Robot(..., reverse=True) or segplan plan --reverse lets the default planner back out) "
+        "and cannot turn around in the space ahead of it, as far as the lattice "
         f"shows: every state it reached lies within {distance:.3g} m of the start and faces at most "
         f"{math.degrees(turn):.0f} deg away from the start's heading; a start facing into a dead "
         "end (a bay walled on three sides, nose in) needs reversing out"
@@ -473,6 +504,8 @@ def lattice_search(
     escapes=True,
     schedule: Schedule = SCHEDULE,
     progress=None,
+    reverse_factor=REVERSE_FACTOR,
+    cusp_penalty=CUSP_PENALTY,
 ):
     """:func:`plan_lattice`, also returning the :class:`segplan.planning.links.LinkModel` it used.
 
@@ -500,6 +533,8 @@ def lattice_search(
         cell=cell,
         escapes=escapes,
         schedule=schedule,
+        reverse_factor=reverse_factor,
+        cusp_penalty=cusp_penalty,
     )
     t0 = time.perf_counter() if t0 is None else t0
     links = LinkModel(workspace_of(scenario) if workspace is None else workspace)
