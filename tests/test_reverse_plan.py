@@ -2,6 +2,7 @@
 
 import json
 import math
+from pathlib import Path
 
 import pytest
 
@@ -110,3 +111,23 @@ def test_refine_refuses_a_plan_with_reverse_links(bay_plan):
     with pytest.raises(ValueError, match="reverse links"):
         segplan.refine(raw, sc)
     assert plan.refinement is not None  # the default planner refined it run by run
+
+
+def test_plan_poses_drive_reverse_links_backwards():
+    """viz.metrics.plan_poses samples a reverse plan in driving order: continuous, from the
+    start to the goal, one measured reversal per cusp, the front-wheel length the plan's LONGD."""
+    import numpy as np
+
+    from segplan.viz.metrics import measure_scenario_path, plan_poses
+
+    sc = segplan.load_scenario(
+        Path(__file__).resolve().parents[1] / "scenarios/beyond_the_paper/dead_end_bay.json"
+    )
+    plan = segplan.plan_scenario(sc)
+    assert plan.cusps
+    P = plan_poses(plan, 0.01)
+    assert np.allclose(P[0], tuple(sc.start)) and np.allclose(P[-1], tuple(sc.goal))
+    assert np.hypot(*np.diff(P[:, :2], axis=0).T).max() < 0.02
+    m = measure_scenario_path(P, sc)
+    assert m.reversals == len(plan.cusps) and not m.collides
+    assert m.front_length == pytest.approx(plan.cost, rel=1e-4)

@@ -304,19 +304,27 @@ def union_poses(union: Union, step: float = DEFAULT_STEP) -> np.ndarray:
 
 
 def plan_poses(plan, step: float = DEFAULT_STEP) -> np.ndarray:
-    """Dense poses ``(n, 3)`` of a segplan plan (or any sequence of consecutive unions).
+    """Dense poses ``(n, 3)`` of a segplan plan (or any sequence of consecutive unions), in
+    driving order.
+
+    A plan with reverse links (:attr:`segplan.Plan.directions`, issue 26) drives each of
+    them backwards: the link's union, made from its far node to its near one, is sampled
+    and its poses taken in the reverse order (the same configurations, the heading still the
+    robot's), so :func:`measure_path` sees A move against its heading and counts a cusp at
+    each change of direction.
 
     Parameters
     ----------
     plan : segplan.Plan or iterable of Union
-        A plan (its ``unions``) or its unions.
+        A plan (its ``unions``) or its unions (driven forwards).
     step : float
         Largest spacing (m) of the samples of A and B, see :func:`union_poses`.
     """
     unions = list(getattr(plan, "unions", plan))
     if not unions:
         raise ValueError("plan must hold at least one segplan.Union")
-    parts = [union_poses(u, step) for u in unions]
+    directions = getattr(plan, "link_directions", None) or (1,) * len(unions)
+    parts = [union_poses(u, step)[:: 1 if d > 0 else -1] for u, d in zip(unions, directions, strict=True)]
     # consecutive unions share their node: keep it once
     return np.concatenate([parts[0]] + [p[1:] for p in parts[1:]])
 
