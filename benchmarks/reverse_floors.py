@@ -11,22 +11,34 @@ core is refused and run again; resumable), on
 * the **Dubins** space (forward only): which floors need reverse at all (those Reeds-Shepp
   solves and Dubins does not); ``reverse_ompl_dubins.csv`` and the files beside it.
 
+With ``--segplan``: segplan's default planner with reverse gear on the same floors in this
+warm process (:mod:`segplan.studies.reverse_study`), each plan checked by the dense oracle;
+``reverse_segplan.csv`` and ``reverse_segplan.json`` (when, where, load, commit, CPU share),
+then the summary against the stored OMPL runs (``reverse_summary.csv``).
+
 Usage::
 
     python benchmarks/reverse_floors.py --space reedsshepp dubins   # 800 runs of 5 s
     python benchmarks/reverse_floors.py --n 3 --results /tmp/r      # a try
+    python benchmarks/reverse_floors.py --space --segplan           # segplan's side, the summary
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import sys
+import time
 from collections.abc import Sequence
 from pathlib import Path
+
+import pandas as pd
 
 from segplan.studies import kind_study as ks
 from segplan.studies import ompl_runner
 from segplan.studies import reverse_floors as rf
+from segplan.studies import reverse_study as rs
 from segplan.studies import robustness as rb
 
 #: The repository's stored results.
@@ -43,14 +55,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=int, default=rf.N_PER_KIND, help=f"floors per kind (default {rf.N_PER_KIND})")
     ap.add_argument("--kinds", nargs="+", choices=rf.REVERSE_KINDS, default=list(rf.REVERSE_KINDS))
-    ap.add_argument("--space", nargs="+", choices=ompl_runner.SPACES, default=["reedsshepp"])
+    ap.add_argument("--space", nargs="*", choices=ompl_runner.SPACES, default=["reedsshepp"])
+    ap.add_argument("--segplan", action="store_true", help="segplan's side and the summary")
     ap.add_argument("--results", type=Path, default=RESULTS, help=f"where the files go (default {RESULTS})")
     ap.add_argument("--budget", type=float, default=ks.BUDGET, help="BIT*'s budget (s; the study's: 5)")
     ap.add_argument("--jobs", type=int, help="at most this many OMPL runs at a time (default: free cores)")
     args = ap.parse_args(argv)
     if args.n < 1:
         ap.error("--n must be at least 1")
-    if not ompl_runner.ompl_available():
+    if args.space and not ompl_runner.ompl_available():
         ap.error("OMPL's Python bindings are needed (pip install 'segplan[peers]')")
     argv_list = ["benchmarks/reverse_floors.py", *(sys.argv[1:] if argv is None else argv)]
     groups = {k: rf.reverse_floors(k, args.n) for k in args.kinds}
@@ -73,7 +86,43 @@ def main(argv: Sequence[str] | None = None) -> int:
         )
         solved = table.groupby("group")["solved"].agg(["sum", "count"])
         print(f"{space}:\n{solved.to_string()}")
+    if args.segplan:
+        _segplan_side(args, argv_list)
     return 0
+
+
+def _segplan_side(args, argv: list[str]) -> None:
+    """segplan with reverse gear on the floors, stored with provenance; the summary printed and stored."""
+    meta = ompl_runner.provenance(argv, None, None)
+    for key in ("fairness", "simplifier", "ompl", "jobs"):  # the OMPL side's own
+        meta.pop(key)
+    meta.update(
+        what="segplan's default planner, the robot with reverse gear, on segplan.studies.reverse_floors",
+        generator="segplan.studies.reverse_floors",
+        generator_version=rf.GENERATOR_VERSION,
+        kinds=list(args.kinds),
+        floors_per_kind=args.n,
+        options="the planner's defaults (reverse_factor, cusp_penalty, time_limit)",
+        measured_by="segplan.viz.metrics.measure_scenario_path (dense oracle), plan sampled every 1 cm",
+    )
+    t0 = time.perf_counter()
+    seg = rs.run_segplan(args.kinds, args.n, None, progress=print)
+    share = seg["cpu_seconds"] / seg["seconds"]
+    meta.update(
+        finished=pd.Timestamp.now(tz="UTC").isoformat(timespec="seconds"),
+        wall_seconds=time.perf_counter() - t0,
+        load_average_after=list(os.getloadavg()),
+        cpu_share={"min": float(share.min()), "median": float(share.median()), "max": float(share.max())},
+        note="Plan times are wall times in a warm process; a CPU share below 0.9 means a loaded machine.",
+    )
+    csv = args.results / "reverse_segplan.csv"
+    seg.to_csv(csv, index=False)
+    csv.with_suffix(".json").write_text(json.dumps(meta, indent=1) + "\n", encoding="utf-8")
+    ompl = {s: rb.read_ompl(ompl_csv(args.results, s)) for s in ompl_runner.SPACES}
+    summ = rs.summary(rs.compare(seg, ompl["reedsshepp"], ompl["dubins"]))
+    summ.to_csv(args.results / "reverse_summary.csv", index=False)
+    with pd.option_context("display.width", 220, "display.max_columns", 30, "display.precision", 3):
+        print(summ.to_string(index=False))
 
 
 if __name__ == "__main__":

@@ -93,3 +93,36 @@ def test_corridor(floors):
 def test_bad_input(kind, index):
     with pytest.raises(ValueError):
         rf.reverse_floor(kind, index)
+
+
+def test_reverse_study_compares_with_both_ompl_spaces():
+    """segplan with reverse gear on one bay-out floor, against fake OMPL tables: the floor
+    needs reverse when Reeds-Shepp solves it and Dubins does not; ratio and cusps as stated."""
+    import pandas as pd
+
+    from segplan.studies import reverse_study as rs
+    from segplan.studies import robustness as rb
+
+    sc = rf.reverse_floor("bay-out", 0)
+    rev = rs.with_reverse(sc)
+    assert rev.robot.reverse and not sc.robot.reverse and len(rev.obstacles) == len(sc.obstacles)
+    seg = rs.run_segplan(["bay-out"], 1)
+    assert seg.loc[0, "floor_key"] == floor_key(sc) and seg.loc[0, "solved"] and seg.loc[0, "valid"]
+
+    def ompl(solved: bool, front: float, reversals: int) -> pd.DataFrame:
+        row = dict.fromkeys(rb.OMPL_COLUMNS, float("nan"))
+        row.update(group="bay-out", floor=sc.name, floor_key=floor_key(sc), planner="BITstar", budget=5.0)
+        row.update(seed=1, solved=solved, valid=solved, simplified_valid=solved, front_length=front)
+        row.update(simplified_front_length=front, reversals=reversals)
+        return pd.DataFrame([row])
+
+    front = float(seg.loc[0, "front_length"])
+    table = rs.compare(seg, ompl(True, 2 * front, 3), ompl(False, float("nan"), 0))
+    assert table.loc[0, "needs_reverse"] and table.loc[0, "ratio"] == pytest.approx(0.5)
+    s = rs.summary(table).iloc[0]
+    assert (s["needs_reverse"], s["solved_of_those"], s["invalid"], s["ompl_cusps_median"]) == (1, 1, 0, 3.0)
+    assert s["cusps_median"] == seg.loc[0, "cusps"]
+    table = rs.compare(seg, ompl(True, front, 3), ompl(True, front, 0))
+    assert not table.loc[0, "needs_reverse"]
+    with pytest.raises(ValueError, match="scenario"):
+        rs.with_reverse("bay-out-000")
