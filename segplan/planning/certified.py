@@ -25,35 +25,47 @@ own arithmetic too.
 *Obstacles* (:meth:`FreeScreen.obstacles_clear`). Every obstacle that
 :meth:`~segplan.planning.validity.Workspace.colliding` could examine (all of them, or on floors of
 more than ``VECTOR_SCREEN_MIN`` obstacles those its index returns for a box holding the one its
-broad phase queries) is cleared in one of three ways:
+broad phase queries) must be cleared, in three stages:
 
-1. its circle lies farther than its inflated radius plus ``m`` from the frame box of the swept
-   segment, or its frame bounding box is separated from that box by more than ``m``: the broad
-   phase rejects it (the same two tests, decided with ``m`` to spare);
-2. otherwise, on every piece ``i``, the separating-axis gap along the polygon's edge normals,
-   ``max_k min(n_k . P - h_k)`` over the piece's four points ``P``, exceeds ``max(e_i, tol) + m``
-   (``tol``: the exact test's touching tolerance of the pair, :meth:`Sweep.quick_reject`). Then
-   the exact test's certified sweep answers "free" at its first step: no sampled position
-   touches (each one's gap is at least that of a piece it bounds, above ``tol``) and no piece is
-   live (its gap exceeds ``e_i``); its quick checks can only answer "free" earlier. Nor can the
-   certain-hit test fire: each of its samples (rear point, middle, front wheel at a ninth of the
-   span, level-0 positions) lies outside some edge's half-plane, by more than ``m``, since both
-   ends of its segment do.
+1. (all of them at once) the broad phase rejects it: its circle lies farther than its inflated
+   radius plus ``m`` from the frame box of the swept segment (the broad phase's own test,
+   decided with ``m`` to spare);
+2. (those left at once, world coordinates) on every piece ``i``, the separating-axis gap along
+   the polygon's edge normals, ``max_k min(n_k . P - h_k)`` over the piece's four points ``P``,
+   exceeds ``max(e_i + m, tol + m)`` (``tol``: a bound of the exact test's touching tolerances of
+   these obstacles, :meth:`Sweep.quick_reject`, with ``|c - p0| <= |c| + |p0|``; the gap does not
+   depend on the frame but for rounding). Then the exact test's certified sweep answers "free"
+   at its first step: no sampled position touches (each one's gap along the edge normals is at
+   least that of a piece it bounds, above ``tol``) and no piece is live (its gap exceeds
+   ``e_i``); its quick checks can only answer "free" earlier. Nor can the certain-hit test
+   fire: each of its samples (rear point, middle, front wheel at each eighth of the span, level-0
+   positions) lies outside some edge's half-plane, since both ends of its segment do.
+3. (those left, in the union's frame, with the exact test's own axes) the broad phase rejects
+   it by its frame bounding box, separated from the sweep's frame box by more than ``m``; or
+   the certified sweep's first step answers "free" with its other axes: every sampled position
+   is apart along an edge normal or along the segment's own normal (all vertices on one side
+   of its line) by more than ``tol + m``, so none touches and no certain hit lies inside; and on
+   every piece the gap along the edge normals or along the axes of the piece's hull
+   (:func:`segplan.floor.sweep.hull_axes`, the very arrays the exact test builds and keeps on
+   the sweep) exceeds ``e_i + m``.
 
 So ``colliding`` finds no obstacle.
 
-*Walls* (:meth:`FreeScreen.walls_clear`). Let ``c`` be the least, over the pieces and the four
-walls, of the distance inside the wall that the hull bound guarantees (``-(max over the four
-points of n . P - h) - e_i``): every point of the swept segment lies at least ``c`` inside every
-wall. If ``c > 2 tol_w + K / (8 * 8192^2) + m`` (``tol_w``, ``K``: the exact test's wall
-tolerance and front-wheel bound), :func:`~segplan.floor.collision.sweep_in_bounds` answers
-"inside": its rear test evaluates rear points (all at least ``c > tol_w`` inside); its
-front-wheel subdivision keeps a piece of parameter length ``h`` only if ``K h^2 / 8 >= c - tol_w
-> tol_w``, so it never stops on its tolerance, and it could stop on more than 4096 live pieces
-only at ``h <= 1 / 8192``, where ``K h^2 / 8 < c - tol_w``: no piece is kept there.
+*Walls* (:meth:`FreeScreen.walls_clear`). Let ``c`` be the least distance inside the walls of
+the 66 points ``A_i, B_i`` less the largest ``e_i``: every point of the swept segment lies at
+least ``c`` inside every wall (each lies within ``e_i`` of a hull of four of the points). If
+``c > 2 tol_w + K / (8 * 8192^2) + m`` (``tol_w``, ``K``: the exact test's wall tolerance and
+front-wheel bound), :func:`~segplan.floor.collision.sweep_in_bounds` answers "inside": its rear
+test evaluates rear points (all at least ``c > tol_w`` inside); its front-wheel subdivision
+keeps a piece of parameter length ``h`` only if ``K h^2 / 8 >= c - tol_w > tol_w``, so it never
+stops on its tolerance, and it could stop on more than 4096 live pieces only at
+``h <= 1 / 8192``, where ``K h^2 / 8 < c - tol_w``: no piece is kept there.
 
-Tested against the exact test and against the dense shapely oracle by
-``tests/test_certified.py``.
+The argument relies on the exact test as :mod:`segplan.floor.collision` implements it (its
+level-0 grid, tolerances and guards): a change there must keep this screen's premises, which
+``tests/test_certified.py`` checks on random worlds (the screen's "free" against the exact
+test's answer and the dense shapely oracle).
+
 """
 
 from __future__ import annotations
@@ -102,16 +114,19 @@ class FreeScreen:
         self.ws = workspace
         convex = workspace.convex
         self.centres = np.array([c.centre for c in convex], dtype=float).reshape(-1, 2)
-        radius = np.array([c.radius for c in convex], dtype=float)
-        self.radius = radius
+        self.radius = np.array([c.radius for c in convex], dtype=float)
         # the broad phase's circles (validity.Workspace) are these radii inflated so
-        self.reach = radius * (1.0 + 1e-9) + 1e-9
-        k = max((len(c.vertices) for c in convex), default=1)
+        self.reach = self.radius * (1.0 + 1e-9) + 1e-9
+        self.k = k = max((len(c.vertices) for c in convex), default=1)
         self.vertices = _padded([c.vertices for c in convex], k, 2)
         self.normals = _padded([c.normals for c in convex], k, 2)
         self.offsets = _padded([c.offsets for c in convex], k)
-        # the largest coordinate of each obstacle (for the margin)
+        # every edge of every obstacle in a row (the first stage's one product)
+        self.normal_rows = self.normals.reshape(-1, 2).T.copy()  # (2, n k)
+        self.offset_rows = self.offsets.ravel()
+        # per obstacle: its largest coordinate (the margin) and radius plus centre's norm (tol)
         self.extent = np.abs(self.vertices).max(axis=(1, 2)) if len(convex) else np.zeros(0)
+        self.far = self.radius + np.hypot(self.centres[:, 0], self.centres[:, 1])
         self.walls_certified = 0
         self.obstacles_certified = 0
 
@@ -122,99 +137,123 @@ class FreeScreen:
         if not ws.curvature_ok(u):
             return False
         sw = ws.sweep(u)
-        if not (self.walls_clear(sw) or ws.in_bounds(u)):
+        A, B = self._world(sw)
+        if not (self.walls_clear(sw, A, B) or ws.in_bounds(u)):
             return False
-        return self.obstacles_clear(sw) or not ws.colliding(u)
+        return self.obstacles_clear(sw, A, B) or not ws.colliding(u)
 
-    def _margin(self, sw: Sweep, extent: float) -> float:
-        return MARGIN_RTOL * (1.0 + sw.size + sw.mag + extent)
+    @staticmethod
+    def _world(sw: Sweep) -> tuple[np.ndarray, np.ndarray]:
+        """The level-0 rear and front points of the sweep (:meth:`Sweep.grid`) in the world."""
+        g = sw.grid()
+        back = sw.rot.T  # frame -> world for row vectors
+        return g.A @ back + sw.p0, g.B @ back + sw.p0
 
-    def walls_clear(self, sw: Sweep) -> bool:
+    def walls_clear(self, sw: Sweep, A: np.ndarray | None = None, B: np.ndarray | None = None) -> bool:
         """True only if the swept segment lies surely inside the walls (module docstring):
-        then :meth:`Workspace.in_bounds` answers True. False: unsure."""
+        then :meth:`Workspace.in_bounds` answers True. False: unsure.
+
+        ``A``, ``B``: the sweep's level-0 points in the world (:meth:`_world`), if at hand.
+        """
         bounds = self.ws.bounds
         if bounds is None:
             return True
+        if A is None or B is None:
+            A, B = self._world(sw)
         xmin, ymin, xmax, ymax = bounds
-        g = sw.grid()
-        # the walls in the frame: outward normals and offsets (as sweep_in_bounds)
-        Nw = np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, -1.0], [0.0, 1.0]])
-        N = Nw @ sw.rot
-        H = np.array([-xmin, xmax, -ymin, ymax]) - Nw @ sw.p0
-        vA, vB = g.A @ N.T - H, g.B @ N.T - H  # (33, 4): n . P - h, negative inside
-        v = np.maximum(vA, vB)
-        reach = np.maximum(v[:-1], v[1:]).max(axis=1) + g.e  # per piece: the hull bound
+        P = np.concatenate((A, B))
+        (x0, y0), (x1, y1) = P.min(axis=0).tolist(), P.max(axis=0).tolist()
+        # every point of the swept segment lies within the largest e of the points' hulls
+        c = min(x0 - xmin, y0 - ymin, xmax - x1, ymax - y1) - float(sw.grid().e.max())
         tol = TOUCH_RTOL * (sw.size + (xmax - xmin) + (ymax - ymin) + math.hypot(sw.x0, sw.y0))
         m = self._margin(sw, max(abs(xmin), abs(ymin), abs(xmax), abs(ymax)))
-        need = 2.0 * tol + sw.K / (8.0 * _FRONT_GUARD * _FRONT_GUARD) + m
-        if bool(-reach.max() > need):  # False on nan (an unbounded K or e)
+        if c > 2.0 * tol + sw.K / (8.0 * _FRONT_GUARD * _FRONT_GUARD) + m:  # False on nan
             self.walls_certified += 1
             return True
         return False
 
-    def obstacles_clear(self, sw: Sweep) -> bool:
+    def _margin(self, sw: Sweep, extent: float) -> float:
+        return MARGIN_RTOL * (1.0 + sw.size + sw.mag + extent)
+
+    def obstacles_clear(self, sw: Sweep, A: np.ndarray | None = None, B: np.ndarray | None = None) -> bool:
         """True only if the swept segment is surely clear of every obstacle (module
-        docstring): then :meth:`Workspace.colliding` finds none. False: unsure."""
-        ws = self.ws
+        docstring): then :meth:`Workspace.colliding` finds none. False: unsure.
+
+        ``A``, ``B``: the sweep's level-0 points in the world (:meth:`_world`), if at hand.
+        """
         n = len(self.radius)
         if n == 0:
             return True
-        x0, x1, y0, y1 = sw.box
-        c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
-        if n > VECTOR_SCREEN_MIN:
-            # the world box of the frame box, as the broad phase queries it, grown further
-            wx = [ox + c * fx - s * fy for fx in (x0, x1) for fy in (y0, y1)]
-            wy = [oy + s * fx + c * fy for fx in (x0, x1) for fy in (y0, y1)]
-            grow = 1e-6 * (1.0 + max(map(abs, wx + wy)))
-            S = ws.index.query(min(wx) - grow, min(wy) - grow, max(wx) + grow, max(wy) + grow)
-            if S.size == 0:
-                self.obstacles_certified += 1
-                return True
-        else:
-            S = np.arange(n)
-        m = self._margin(sw, float(self.extent[S].max()))
-        # 1. the broad phase's circle test, with m to spare
-        C = self.centres[S]
-        dx, dy = C[:, 0] - ox, C[:, 1] - oy
-        fx, fy = c * dx + s * dy, c * dy - s * dx
-        ex = np.maximum(np.maximum(x0 - fx, 0.0), fx - x1)
-        ey = np.maximum(np.maximum(y0 - fy, 0.0), fy - y1)
-        near = ~(np.hypot(ex, ey) > self.reach[S] + m)
-        S, fx, fy = S[near], fx[near], fy[near]
+        if A is None or B is None:
+            A, B = self._world(sw)
+        S = self._indexed(sw) if n > VECTOR_SCREEN_MIN else np.arange(n)
         if S.size:
-            # ... and its frame bounding boxes
-            V = (self.vertices[S] - sw.p0) @ sw.rot
-            px, py = V[:, :, 0], V[:, :, 1]
-            sep = np.maximum(
-                np.maximum(x0 - px.max(axis=1), px.min(axis=1) - x1),
-                np.maximum(y0 - py.max(axis=1), py.min(axis=1) - y1),
-            )
-            near = ~(sep > m)
-            S, fx, fy, V = S[near], fx[near], fy[near], V[near]
+            m = self._margin(sw, float(self.extent[S].max()))
+            # stage 1: the broad phase's circle test, with m to spare, all of them at once
+            x0, x1, y0, y1 = sw.box
+            c, s = sw.cos, sw.sin
+            C = self.centres[S]
+            dx, dy = C[:, 0] - sw.x0, C[:, 1] - sw.y0
+            fx, fy = c * dx + s * dy, c * dy - s * dx
+            ex = np.maximum(np.maximum(x0 - fx, 0.0), fx - x1)
+            ey = np.maximum(np.maximum(y0 - fy, 0.0), fy - y1)
+            S = S[~(np.hypot(ex, ey) > self.reach[S] + m)]
         if S.size:
-            # 2. the certified sweep's first step, every polygon left at once
-            N = self.normals[S] @ sw.rot  # (P, k, 2), frame
-            H = self.offsets[S] - self.normals[S] @ sw.p0  # (P, k)
+            # stage 2, in the world: every edge normal of the obstacles left at once
             g = sw.grid()
-            tol = TOUCH_RTOL * (sw.size + self.radius[S] + np.hypot(fx, fy) + sw.mag) + m
-            # no sampled position touches: apart along an edge normal or the segment's normal
-            mm = np.minimum(np.einsum("ij,pkj->ipk", g.A, N), np.einsum("ij,pkj->ipk", g.B, N)) - H
-            side = np.einsum("ij,pkj->ipk", g.nseg, V) - g.oseg[:, None, None]
-            apart = (mm.max(axis=2) > tol) | (side.min(axis=2) > tol) | (side.max(axis=2) < -tol)
-            if not apart.all():
+            normals = self.normals[S].reshape(-1, 2).T
+            mm = (np.minimum(A @ normals, B @ normals) - self.offsets[S].ravel()).reshape(len(A), -1, self.k)
+            gap = np.minimum(mm[:-1], mm[1:]).max(axis=2)  # (32, obstacles)
+            # the largest touching tolerance of these obstacles (|c - p0| <= |c| + |p0|)
+            far = float(self.far[S].max())
+            tol = TOUCH_RTOL * (sw.size + far + math.hypot(sw.x0, sw.y0) + sw.mag) + m
+            left = ~np.all(gap > np.maximum(g.e + m, tol)[:, None], axis=0)  # False on nan
+            # stage 3, in the frame, for the obstacles left: as the broad phase and the exact test
+            if left.any() and not self._frame_clear(sw, S[left], mm[:, left], tol, m):
                 return False
-            # no piece is live: its gap along the edge normals, else along the hull's axes, exceeds e
-            need = g.e[:, None] + m
-            gap = np.minimum(mm[:-1], mm[1:]).max(axis=2)  # (32, P)
-            if not np.all(gap > need):  # False on nan
-                if g.nrm is None:  # the hull axes, as the exact test builds (and keeps) them
-                    nrm, g.qmin, g.qmax = hull_axes(corners(g.A[:-1], g.B[:-1], g.A[1:], g.B[1:]))
-                    g.nrm = nrm.reshape(-1, 2)
-                pv = np.einsum("ij,pkj->ipk", g.nrm, V).reshape(len(g.e), 6, len(S), -1)
-                hull = np.maximum(
-                    pv.min(axis=3) - g.qmax[:, :, None], g.qmin[:, :, None] - pv.max(axis=3)
-                ).max(axis=1)
-                if not np.all(np.maximum(gap, hull) > need):
-                    return False
         self.obstacles_certified += 1
         return True
+
+    def _indexed(self, sw: Sweep) -> np.ndarray:
+        """The obstacles the index files near the world box of the sweep's frame box (a
+        superset of those the broad phase of :meth:`Workspace.colliding` examines)."""
+        x0, x1, y0, y1 = sw.box
+        c, s, ox, oy = sw.cos, sw.sin, sw.x0, sw.y0
+        wx = [ox + c * fx - s * fy for fx in (x0, x1) for fy in (y0, y1)]
+        wy = [oy + s * fx + c * fy for fx in (x0, x1) for fy in (y0, y1)]
+        grow = 1e-6 * (1.0 + max(map(abs, wx + wy)))
+        return self.ws.index.query(min(wx) - grow, min(wy) - grow, max(wx) + grow, max(wy) + grow)
+
+    def _frame_clear(self, sw: Sweep, S: np.ndarray, mm: np.ndarray, tol: float, m: float) -> bool:
+        """Stage 3 (module docstring): obstacles ``S`` rejected by the broad phase's
+        bounding-box test, or cleared by the certified sweep's first step with the segment's
+        and the hull's axes. ``mm``: stage 2's ``min(n . A - h, n . B - h)`` of these obstacles,
+        ``tol``: a bound of their touching tolerances, ``m`` included."""
+        x0, x1, y0, y1 = sw.box
+        # ... and its frame bounding boxes
+        V = (self.vertices[S] - sw.p0) @ sw.rot  # (P, k, 2), frame
+        px, py = V[:, :, 0], V[:, :, 1]
+        sep = np.maximum(
+            np.maximum(x0 - px.max(axis=1), px.min(axis=1) - x1),
+            np.maximum(y0 - py.max(axis=1), py.min(axis=1) - y1),
+        )
+        near = ~(sep > m)
+        if not near.any():
+            return True
+        V, mm = V[near], mm[:, near]
+        g = sw.grid()
+        # no sampled position touches: apart along an edge normal or the segment's normal
+        side = np.einsum("ij,pkj->ipk", g.nseg, V) - g.oseg[:, None, None]
+        apart = (mm.max(axis=2) > tol) | (side.min(axis=2) > tol) | (side.max(axis=2) < -tol)
+        if not apart.all():
+            return False
+        # no piece is live: its gap along the edge normals, else along the hull's axes, exceeds e
+        if g.nrm is None:  # the hull axes, as the exact test builds (and keeps) them
+            nrm, g.qmin, g.qmax = hull_axes(corners(g.A[:-1], g.B[:-1], g.A[1:], g.B[1:]))
+            g.nrm = nrm.reshape(-1, 2)
+        pv = np.einsum("ij,pkj->ipk", g.nrm, V).reshape(len(g.e), 6, len(V), -1)
+        hull = np.maximum(pv.min(axis=3) - g.qmax[:, :, None], g.qmin[:, :, None] - pv.max(axis=3)).max(
+            axis=1
+        )
+        gap = np.minimum(mm[:-1], mm[1:]).max(axis=2)
+        return bool(np.all(np.maximum(gap, hull) > (g.e + m)[:, None]))
