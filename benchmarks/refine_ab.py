@@ -3,7 +3,7 @@
 Not a timed test. Loads this tree's ``segplan`` and another checkout's (``--base``, its
 ``segplan`` package imported under the name ``segplan_base`` through a symbolic link in a
 temporary directory; the package imports itself relatively) into one warm process, then for
-the first ``--n`` floors of each kind of :mod:`segplan.studies.floor_kinds`, ``--reps`` times,
+the first ``--n`` floors of each kind (default :data:`KINDS`), ``--reps`` times,
 alternating which side goes first:
 
 * the whole call ``plan_scenario(sc)`` with the defaults (the refinement's inputs recorded on
@@ -35,6 +35,9 @@ from pathlib import Path
 
 import segplan
 from segplan.studies.floor_kinds import FLOOR_KINDS
+
+#: The default kinds: the 30 x 20 m ones of issue 25 (those ``benchmarks/same_plans.py --kinds`` records).
+KINDS = ("warehouse", "rooms", "parking", "clutter", "robots")
 
 
 def load_base(base: Path):
@@ -95,7 +98,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument(
         "--reps", type=int, default=3, help="repetitions per floor; the least time counts (default 3)"
     )
-    ap.add_argument("--kinds", nargs="+", choices=FLOOR_KINDS, default=list(FLOOR_KINDS))
+    ap.add_argument("--kinds", nargs="+", choices=FLOOR_KINDS, default=list(KINDS))
     args = ap.parse_args(argv)
     if args.n < 1 or args.reps < 1:
         raise ValueError(f"--n and --reps must be positive, got {args.n} and {args.reps}")
