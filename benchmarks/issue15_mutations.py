@@ -98,8 +98,8 @@ MUTATIONS = (
     Mutation(
         "certain_failures_never",
         "segplan/planning/refine.py",
-        "    bad |= np.any(ws.inside(wx, wy), axis=1)\n    return bad",
-        "    bad |= np.any(ws.inside(wx, wy), axis=1)\n    return bad & False",
+        "        bad[look] = np.any(ws.inside(wx[look], wy[look]), axis=1)\n    return bad",
+        "        bad[look] = np.any(ws.inside(wx[look], wy[look]), axis=1)\n    return bad & False",
         REFINE_TESTS,
         "certain_failures flags nothing",
     ),

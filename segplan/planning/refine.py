@@ -49,6 +49,7 @@ from ..model.cost import chain_longd, longd_gauss_intrinsic
 from ..model.frame import heuristic_alpha
 from ..model.pose import Pose, alpha_interval, wrap
 from ..model.union import cubic_coefficients, curvature_samples, exceeds_curvature
+from .certified import FreeScreen
 from .context import Deadline, workspace_of
 from .links import ALPHA_MARGIN, LinkModel
 from .options import RefineOptions
@@ -210,6 +211,7 @@ class _Refiner:
     def __init__(self, links: LinkModel, options: RefineOptions, deadline: Deadline | None = None):
         self.links = links
         self.ws = links.ws
+        self.free = FreeScreen(links.ws)  # the exact test's answers, most of them cheaper
         self.L = links.L
         self.options = options
         self.moves_table = np.array(options.moves, dtype=float)
@@ -231,7 +233,7 @@ class _Refiner:
         if out is None:
             self.checked += 1
             u = self.links.union(a, b)
-            if u is None or not self.ws.union_free(u):
+            if u is None or not self.free.union_free(u):
                 out = (None, math.inf)
             else:
                 out = (u, self.cost(u))
@@ -243,13 +245,20 @@ class _Refiner:
         """The refinement's link cost: [1] by Gauss-Legendre (:func:`longd_gauss_intrinsic`)."""
         return float(longd_gauss_intrinsic(u.d, u.phi0, u.phi1, u.alpha, u.L))
 
-    def screen(self, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    def screen(self, A: np.ndarray, B: np.ndarray, need=None) -> np.ndarray:
         """The link cost in the heuristic frame for links ``A[k] -> B[k]``, vectorised.
 
         ``inf`` where no cubic joins the poses or where the link surely fails: a sampled
         curvature above the steering limit, or a sampled point of the swept segment
         outside the walls or strictly inside an obstacle (:func:`certain_failures`).
         Screening only: a finite value is no proof that the link is free.
+
+        ``need``, optional: a function of the costs (before failures, ``inf`` where no cubic
+        joins the poses) that returns the links whose certain failures matter to the caller;
+        the others are not looked for inside the obstacles (their value may then be finite
+        where a failure would make it ``inf``). Every value is computed on the whole batch as
+        without ``need`` (the vectorised functions' last bits depend on the batch), so the
+        links that matter get the same values.
         """
         A, B = np.broadcast_arrays(A, B)
         dx, dy = B[..., 0] - A[..., 0], B[..., 1] - A[..., 1]
@@ -263,7 +272,13 @@ class _Refiner:
             dd, p0, p1 = d[ok], phi0[ok], phi1[ok]
             alpha = np.atleast_1d(heuristic_alpha(dd, p0, p1, self.L))
             cost = longd_gauss_intrinsic(dd, p0, p1, alpha, self.L)
-            bad = certain_failures(self.ws, A[ok], psi[ok] - alpha, *cubic_coefficients(dd, p0, p1, alpha))
+            only = None
+            if need is not None:
+                out[ok] = cost
+                only = need(out)[ok]
+            bad = certain_failures(
+                self.ws, A[ok], psi[ok] - alpha, *cubic_coefficients(dd, p0, p1, alpha), only=only
+            )
             out[ok] = np.where(bad, math.inf, cost)
         return out
 
@@ -380,9 +395,18 @@ class _Refiner:
                 prev = np.array([nodes[i - 1] for i in idx], dtype=float)[:, None, :]
                 after = np.array([nodes[i + 1] for i in idx], dtype=float)[:, None, :]
                 k = len(idx) * m
+                # a move is checked only if its screened cost is below its node's
+                # ``now - gain`` (below): for the others, no need to look for failures
+                limit = np.repeat([self._limit(nodes[i - 1], nodes[i], nodes[i + 1], gain) for i in idx], m)
+
+                def need(cost, limit=limit, k=k):
+                    below = cost[:k] + cost[k:] < limit
+                    return np.concatenate((below, below))
+
                 both = self.screen(
                     np.concatenate((np.broadcast_to(prev, Q.shape).reshape(k, 3), Q.reshape(k, 3))),
                     np.concatenate((Q.reshape(k, 3), np.broadcast_to(after, Q.shape).reshape(k, 3))),
+                    need,
                 )
                 guess = (both[:k] + both[k:]).reshape(len(idx), m)
                 for row, i in enumerate(idx):
@@ -406,8 +430,23 @@ class _Refiner:
                 break
         return nodes
 
+    def _limit(self, a: Pose, p: Pose, b: Pose, gain: float) -> float:
+        """``now - gain`` of node ``p`` between ``a`` and ``b`` (:meth:`polish`), from its checked
+        links (the same floating-point operations); ``inf`` if one is not checked yet.
 
-def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2, c3) -> np.ndarray:
+        A move whose screened cost is at least this is never checked: the moves are tried
+        in increasing order of that cost and the first at least ``now - gain`` ends the
+        node's update. Its certain failures would only raise its cost (``inf``), so they
+        need not be looked for (:meth:`screen`'s ``need``)."""
+        ka, kb = self.known.get((a, p)), self.known.get((p, b))
+        if ka is None or kb is None:
+            return math.inf
+        return ka[1] + kb[1] - gain
+
+
+def certain_failures(
+    ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2, c3, only: np.ndarray | None = None
+) -> np.ndarray:
     """Links that surely break a rule, from samples (vectorised; screening only).
 
     A link fails for certain if its rear path's curvature, sampled at ``SAMPLES``
@@ -426,6 +465,12 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
         World angles of the links' alpha frames (``psi - alpha``).
     X, c1, c2, c3 : ndarray (n,)
         The cubics (:func:`segplan.model.union.cubic_coefficients`).
+    only : ndarray of bool (n,), optional
+        Look for sampled points inside obstacles only on these links (the others may then
+        be reported False although a point of theirs lies inside one). Links already failing
+        (curvature, walls) are not looked at either: they fail whatever else is found. The
+        points are computed on the whole batch and the test is exact arithmetic point by
+        point, so the links looked at get the same answers as without ``only``.
     """
     x, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], SAMPLES)
     bad = exceeds_curvature(fp, fpp, ws.max_curvature, axis=1)
@@ -440,5 +485,7 @@ def certain_failures(ws: Workspace, A: np.ndarray, frame: np.ndarray, X, c1, c2,
     if ws.bounds is not None:
         xmin, ymin, xmax, ymax = ws.bounds
         bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
-    bad |= np.any(ws.inside(wx, wy), axis=1)
+    look = ~bad if only is None else only & ~bad
+    if look.any():
+        bad[look] = np.any(ws.inside(wx[look], wy[look]), axis=1)
     return bad
