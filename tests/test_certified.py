@@ -161,3 +161,22 @@ def test_certain_failures_only_looks_where_asked():
         part = certain_failures(ws, A, psi - alpha, *cubic, only=only)
         assert np.array_equal(part[only], full[only])
         assert not np.any(part & ~full)
+
+
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 2**32 - 1), st.floats(0.0, 1.0), st.floats(0.0, 1.0))
+def test_screen_with_overhangs_is_the_exact_answer(seed, rear, front):
+    """A robot with a body (issue 26): the sweep's points are the ends of the longer axis
+    segment, and the screen's "free" is still the exact test's answer (the exact test with
+    overhangs is checked against the dense body oracle in test_footprint_collision)."""
+    u, polys, bounds = random_world(seed)
+    rear, front = rear * u.L, front * u.L
+    ws = Workspace(polys, u.L, bounds, rear=rear, front=front)
+    screen = FreeScreen(ws)
+    sw = ws.sweep(u)
+    if screen.obstacles_clear(sw):
+        assert ws.colliding(u, first=False) == []
+    if screen.walls_clear(sw):
+        assert ws.in_bounds(u)
+    exact = Workspace(polys, u.L, bounds, cache=False, rear=rear, front=front)
+    assert screen.union_free(u) == exact.union_free(u)
