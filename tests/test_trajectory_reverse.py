@@ -14,6 +14,7 @@ Oracles that do not share the code under test:
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -201,3 +202,20 @@ def test_a_hand_made_plan_reports_its_directions():
     plan = lattice_plan(u.p1, [u], ["start", "goal"], 1.0, 1.0, 0, 0, 0.0, stats, directions=(-1,))
     P = plan.poses()
     assert (P.x[0], P.y[0], P.x[-1], P.y[-1]) == (u.p1.x, u.p1.y, u.p0.x, u.p0.y) and set(P.direction) == {-1}
+
+
+def test_the_command_line_summarises_and_exports_a_reverse_plan(tmp_path, capsys):
+    from segplan.cli import main
+
+    files = {flag: tmp_path / name for flag, name in (("--poses", "p.csv"), ("--trajectory", "t.csv"))}
+    args = [str(x) for pair in files.items() for x in pair]
+    assert main(["plan", "dead_end_bay", *args, "--nav-path", str(tmp_path / "n.yaml")]) == 0
+    text = capsys.readouterr().out
+    assert "cusps: 1)" in text and "(cusp)" in text and "stops at cusps: 1" in text
+    assert "(reversing to it)" in text and text.count(", cusp\n") == 1
+    poses = np.genfromtxt(files["--poses"], delimiter=",", names=True)
+    law = np.genfromtxt(files["--trajectory"], delimiter=",", names=True)
+    assert set(poses["direction"]) == {-1, 1} and np.all(np.diff(poses["s"]) >= 0)
+    assert np.all(law["v"] * law["direction"] >= 0) and law["v"].min() < 0
+    assert main(["plan", "fig5_example1", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["plan_facts"]["cusps"] == []
