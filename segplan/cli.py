@@ -52,7 +52,7 @@ from .planning.api import plan_scenario
 from .planning.export import write_nav_path
 from .planning.options import DefaultOptions, LatticeOptions, PaperOptions
 from .planning.plan import NoPathError, Plan
-from .planning.trajectory import DEFAULT_STEP
+from .planning.trajectory import DEFAULT_STEP, POSE_COLUMNS
 from .viz import animate
 from .viz.metrics import plan_clearance
 from .viz.progress import ProgressLine
@@ -66,7 +66,7 @@ DESCRIPTION = """\
 Trajectory planning for an oriented-segment mobile robot (Campoy et al., 1989).
 
 The robot is the segment from the middle of the rear axle A to the front wheel B, of
-length L; it drives forward only, with the rear path's curvature at most
+length L; it drives forward only (--reverse: both ways), with the rear path's curvature at most
 tan(max_steer) / L. A plan is a chain of nodes (poses x, y, theta) joined by cubic
 unions, each in its optimal reference system; its cost is LONGD, the length of the
 front wheel's path. The graph is built on-line (intermediate nodes on the bisectrix of
@@ -328,20 +328,21 @@ def _add_trajectory_options(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--poses",
         metavar="FILE.csv",
-        help="write the poses: s,x,y,theta,x_front,y_front,kappa,steer,union (m, rad, 1/m)",
+        help=f"write the poses in driving order: {','.join(POSE_COLUMNS)} (m, rad, 1/m; -1 reversing)",
     )
     g.add_argument(
         "--trajectory",
         metavar="FILE.csv",
         help="write a time law within the limits below, from rest to rest: t,s,v,a and the pose "
-        "columns (s, m/s, m/s^2); the robot stops to re-steer where the steering jumps at a node. "
-        "Prints the total time and what the jumps cost",
+        "columns (s, m/s, m/s^2; v < 0 reversing); the robot stops at each cusp and to re-steer where the "
+        "steering jumps at a node. Prints the total time and what the jumps cost",
     )
     g.add_argument(
         "--nav-path",
         metavar="FILE.yaml",
         help=f"write the time law's poses as a ROS nav_msgs/Path message, each stamped with its time "
-        f"(frame {NAV_FRAME!r}; YAML for .yaml or .yml, JSON for .json; needs no ROS)",
+        f"(frame {NAV_FRAME!r}; YAML for .yaml or .yml, JSON for .json; needs no ROS). A reversing pose "
+        "keeps the robot's heading (the direction is in the CSVs)",
     )
     g.add_argument(
         "--step",
@@ -382,24 +383,16 @@ def _trajectories_out(args, result: Plan) -> tuple[dict, list[str]]:
     )
     if args.trajectory:
         law.to_csv(args.trajectory)
-        out["trajectory"] = {
-            "file": args.trajectory,
-            "samples": len(law),
-            "total_time": law.total_time,
-            "jump_time": law.jump_time,
-            "dwell_time": law.dwell_time,
-            "jumps": law.jumps,
-            "limits": {
-                "v_max": law.v_max,
-                "a_max": law.a_max,
-                "a_lat_max": law.a_lat_max,
-                "steer_rate_max_deg": args.steer_rate_max,
-            },
+        out["trajectory"] = {"file": args.trajectory, "samples": len(law)} | {
+            k: getattr(law, k) for k in ("total_time", "jump_time", "dwell_time", "jumps", "cusps")
         }
+        limits = {k: getattr(law, k) for k in ("v_max", "a_max", "a_lat_max")}
+        out["trajectory"]["limits"] = limits | {"steer_rate_max_deg": args.steer_rate_max}
         lines += [
             f"trajectory  {args.trajectory} ({len(law)} samples)",
             f"  time      {law.total_time:.2f} s from rest to rest, of which {law.jump_time:.2f} s for "
-            f"{law.jumps} steering jumps ({law.dwell_time:.2f} s re-steering standing)",
+            f"{law.jumps} steering jumps ({law.dwell_time:.2f} s re-steering standing), "
+            f"stops at cusps: {law.cusps}",
         ]
     if args.nav_path:
         message = law.nav_path(NAV_FRAME)
@@ -518,11 +511,13 @@ def _what_the_plan_is(result: Plan, scenario: Scenario) -> dict:
         "curvature_limit": facts.curvature_limit,
         "within_limit": facts.within_limit,
         "steering_jumps_deg": [math.degrees(j) for j in jumps],
+        "cusps": list(result.cusps),
     }
 
 
 def _format_facts(facts: dict) -> list[str]:
     jumps = facts["steering_jumps_deg"]
+    shown = [f"{j:+.1f}" + (" (cusp)" if i in facts["cusps"] else "") for i, j in enumerate(jumps, 1)]
     return [
         f"made by     {facts['made_by']}",
         f"paths       front wheel {facts['front_length']:.3f} m, rear axle {facts['rear_length']:.3f} m",
@@ -532,7 +527,7 @@ def _format_facts(facts: dict) -> list[str]:
         + (
             "no node: one union"
             if not jumps
-            else f"jumps at the nodes {', '.join(f'{j:+.1f}' for j in jumps)} deg "
+            else f"jumps at the nodes {', '.join(shown)} deg "
             f"(largest {max(abs(j) for j in jumps):.1f} deg; a controller re-steers there)"
         ),
     ]
@@ -542,9 +537,11 @@ def _format_plan(result: Plan, name: str) -> str:
     lines = [
         f"scenario    {name}",
         f"cost        {result.cost:.4f} m (LONGD, front-wheel path length)",
-        f"nodes       {len(result.nodes)} ({len(result.unions)} unions)",
+        f"nodes       {len(result.nodes)} ({len(result.unions)} unions, cusps: {len(result.cusps)})",
     ]
+    back = (0,) + tuple(d < 0 for d in result.link_directions)  # the node reached reversing
     for i, (p, kind) in enumerate(zip(result.nodes, result.kinds, strict=True)):
+        kind += (" (reversing to it)" if back[i] else "") + (", cusp" if i in result.cusps else "")
         lines.append(f"  {i:3d}  x={p.x:9.4f}  y={p.y:9.4f}  theta={math.degrees(p.theta):9.3f} deg  {kind}")
     lines += [
         f"expansions  {result.expanded}",
@@ -777,9 +774,9 @@ def _plan(args, scenario: Scenario, name: str) -> int:
         print(json.dumps(out, indent=2))
     else:
         print("\n".join([_format_plan(result, name), *_format_facts(facts), *written_lines]))
+    title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
     if args.out:
         try:
-            title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
             _draw(args.out, scenario, result.unions, title)
         except OSError as exc:
             return _error(f"cannot write {args.out}: {exc.strerror or exc}")
@@ -787,7 +784,6 @@ def _plan(args, scenario: Scenario, name: str) -> int:
             print(f"figure      {args.out}")
     if args.animate:
         try:
-            title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
             _animate(args.animate, scenario, result, title, _animation_options(args))
         except OSError as exc:
             return _error(f"cannot write {args.animate}: {exc.strerror or exc}")

@@ -90,3 +90,35 @@ def test_the_legend_names_both_paths_beside_the_floor():
 def test_bad_options_raise_value_error(kwargs, match):
     with pytest.raises(ValueError, match=match):
         animate.animate_path(_straight(3.0), 1.0, **kwargs)
+
+
+def test_a_reverse_plan_backs_up_pauses_at_its_cusp_and_says_so():
+    """Issue 26: the dead-end bay's plan in driving order; CUSP_FRAMES more frames standing at
+    the cusp; the reversing stretch of the rear path in its own legend entry."""
+    sc = segplan.load_scenario("dead_end_bay")
+    plan = segplan.plan_scenario(sc)
+    poses, directions = segplan.viz.metrics.plan_pose_directions(plan)
+    assert np.array_equal(poses, segplan.plan_poses(plan)) and len(plan.cusps) == 1
+    anim = animate.animate_plan(plan, sc, frames=20)
+    assert _frames(anim) == 20 + animate.CUSP_FRAMES
+    cusp = np.flatnonzero(directions[:-1] != directions[1:])[0]
+    node = plan.nodes[plan.cusps[0]]
+    assert np.allclose(poses[cusp, :2], (node.x, node.y))
+    standing = [
+        k for k in range(_frames(anim)) if np.allclose(anim._func(k)[3].get_xydata()[0], poses[cusp, :2])
+    ]
+    assert len(standing) >= animate.CUSP_FRAMES  # the cusp's frames, consecutive
+    assert standing == list(range(standing[0], standing[0] + len(standing)))
+    rear, reversing = anim._func(_frames(anim) - 1)[0], anim._func(_frames(anim) - 1)[5]
+    back = np.isfinite(reversing.get_xydata()[:, 0])
+    ahead = np.isfinite(rear.get_xydata()[:, 0])
+    assert back.any() and ahead.any() and (back | ahead).all()
+    assert np.allclose(reversing.get_xydata()[back][0], (sc.start.x, sc.start.y))  # it backs out first
+    texts = [t.get_text() for t in anim._fig.axes[0].get_legend().get_texts()]
+    assert animate.REVERSE_LABEL in texts
+    forward = animate.animate_plan(
+        segplan.plan_scenario(segplan.load_scenario("single_obstacle")), sc, frames=3
+    )
+    assert animate.REVERSE_LABEL not in [t.get_text() for t in forward._fig.axes[0].get_legend().get_texts()]
+    with pytest.raises(ValueError, match="directions"):
+        animate.animate_path(_straight(3.0), 1.0, directions=[1, 2])

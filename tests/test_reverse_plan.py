@@ -68,14 +68,6 @@ def test_cli_json_shows_directions_and_cusps(capsys):
     assert data["found"] and len(data["cusps"]) == 1 and -1 in data["directions"]
 
 
-def test_sampling_a_reverse_plan_is_refused_for_now(bay_plan):
-    _, plan = bay_plan
-    with pytest.raises(ValueError, match="reverse"):
-        plan.poses()
-    with pytest.raises(ValueError, match="reverse"):
-        plan.trajectory(1.0, 0.5, 0.5, 0.5)
-
-
 def test_runs_and_by_runs_keep_the_cusps(bay_plan):
     _, plan = bay_plan
     assert runs((1, 1, -1, -1, -1, 1)) == [(0, 2, 1), (2, 5, -1), (5, 6, 1)]

@@ -255,10 +255,11 @@ class Plan:
     def poses(self, step: float = DEFAULT_STEP) -> PathSamples:
         """Samples of the plan every ``step`` metres (at most) along the rear point's path.
 
-        Per sample: arc length ``s`` of A, A's ``x``, ``y``, heading ``theta`` (continuous),
-        the front wheel ``x_front``, ``y_front``, the signed curvature ``kappa`` of A's path
-        and the steering angle ``steer = arctan(L kappa)``; exact per union from its cubic,
-        every node included (twice where two unions meet: each side's curvature). See
+        Per sample: arc length ``s`` travelled by A, A's ``x``, ``y``, heading ``theta``
+        (continuous), the front wheel ``x_front``, ``y_front``, the signed curvature ``kappa``
+        of A's path and the steering angle ``steer = arctan(L kappa)``, the ``direction``
+        (``-1`` reversing); exact per union from its cubic, every node included (twice where
+        two unions meet: each side's curvature), in driving order. See
         :func:`segplan.planning.trajectory.sample_path`.
 
         Parameters
@@ -272,8 +273,7 @@ class Plan:
             Read-only arrays (``.x``, ``.y``, ``.theta``, ``.kappa``, ...), ``.to_csv(path)``,
             ``.nav_path()``, ``.save_nav_path(path)``.
         """
-        self._forward_only("poses")
-        return sample_path(self.unions, step)
+        return sample_path(self.unions, step, self.directions)
 
     def trajectory(
         self,
@@ -290,7 +290,8 @@ class Plan:
         ``v`` (the rear point's speed) at most ``v_max``, ``|dv/dt| <= a_max``,
         ``v^2 |kappa| <= a_lat_max``, ``|d steer / dt| <= steer_rate_max`` everywhere (not
         only at the samples); where the steering jumps at a node (by more than ``jump_tol``)
-        the robot stops and re-steers standing, ``|jump| / steer_rate_max`` seconds. A
+        the robot stops and re-steers standing, ``|jump| / steer_rate_max`` seconds; at a cusp
+        (:attr:`cusps`) it stops and drives on the other way (``v`` negative reversing). A
         forward-backward pass over :meth:`poses` (:func:`segplan.planning.trajectory.time_law`,
         whose module docstring states the models and the discretisation error).
 
@@ -311,24 +312,17 @@ class Plan:
             The samples with ``t``, ``v``, ``a``; ``total_time``, ``jump_time`` (what the
             jumps cost), ``dwell_time``, ``jumps``.
         """
-        self._forward_only("trajectory")
-        return time_law(self.unions, v_max, a_max, a_lat_max, steer_rate_max, step=step, jump_tol=jump_tol)
-
-    def _forward_only(self, what: str) -> None:
-        """ValueError for a plan with reverse links: ``what`` samples the unions as one
-        forward chain (the stop and the change of gear at a cusp are issue 26's next step)."""
-        if self.directions:
-            raise ValueError(
-                f"Plan.{what}: the plan reverses (cusps at nodes {list(self.cusps)}); sampling and "
-                "timing a plan with reverse links is not implemented yet (issue 26)"
-            )
+        return time_law(
+            self.unions, v_max, a_max, a_lat_max, steer_rate_max, step=step, jump_tol=jump_tol,
+            directions=self.directions,
+        )  # fmt: skip
 
     def facts(self, max_steer: float | None = None) -> PlanFacts:
         """The steering angle at each node on each side and its jumps; the largest curvature,
         against ``tan(max_steer) / L`` when the steering limit ``max_steer`` (radians) is given;
         the rear and front path lengths (:func:`segplan.planning.trajectory.plan_facts`).
         The clearance needs the floor: :func:`segplan.plan_clearance`."""
-        return plan_facts(self.unions, max_steer)
+        return plan_facts(self.unions, max_steer, self.directions)
 
     # -- a file that rebuilds the plan ----------------------------------------------------------
     def save(self, path, scenario: Scenario | None = None) -> Path:

@@ -21,6 +21,23 @@ A's path ``kappa = f'' / (1 + f'^2)^(3/2)`` (left turns positive) and the steeri
 ``steer = arctan(L kappa)`` (section "Mobile robot modelling": the robot is tangent to the
 rear path, a bicycle steered at the front wheel).
 
+**Reverse links** (beyond the paper, issue 26: :attr:`segplan.Plan.directions`). A
+backward link is its union, made from the node it drives back to (``p0``) to the node the
+robot is at (``p1``), driven from ``p1`` to ``p0``: its block is sampled as above and taken
+in the reverse order (as :func:`segplan.viz.metrics.plan_poses` does), so the rows follow
+the robot in driving order and ``s`` is the *travelled* rear arc length (non-decreasing);
+each row's ``direction`` is ``+1`` or ``-1``. ``theta`` stays the robot's heading (A->B),
+not the direction of travel. *Curvature and steering while reversing*: with ``sigma`` the
+arc length signed along the heading (``d sigma = direction ds``), the bicycle model with
+signed speed ``v`` is ``x' = v cos theta``, ``y' = v sin theta``, ``theta' = v tan(steer) /
+L``, so ``d theta / d sigma = tan(steer) / L`` whatever the sign of ``v``. ``kappa`` is that
+curvature, ``d theta / d sigma`` (the curve's curvature along its own forward tangent, the
+union's ``f'' / (1 + f'^2)^(3/2)``), and ``steer = arctan(L kappa)`` is the wheel angle that
+follows the path in either direction: a reversed row has the kappa and steer of the same
+point driven forwards. The heading's rate along the travelled length is ``d theta / ds =
+direction * kappa`` (tests/test_trajectory_reverse.py integrates the bicycle model backwards
+with these angles and lands on the link's far node).
+
 **Steering at the nodes** (:func:`plan_facts`, :meth:`segplan.Plan.facts`). Two unions meet
 at a node with the same position and heading but, in general, different curvatures: the
 steering angle steps there by ``arctan(L kappa_out) - arctan(L kappa_in)``.
@@ -32,7 +49,10 @@ its wheel already at the first sample's steering angle. *Jump model*: the steeri
 step while the robot moves, so at a node whose steering steps by more than ``jump_tol``
 (rounding) the robot stops, re-steers standing for ``|jump| / steer_rate_max`` seconds, and
 drives on; a node's two rows then hold the two stamps (the steering rate while standing is
-``steer_rate_max`` exactly). *Profile*: the classic forward-backward pass over the samples
+``steer_rate_max`` exactly). *Cusps*: at a node where the direction changes the robot
+stops (``v = 0`` on both rows), re-steers standing if the steering steps there, and
+accelerates the other way; ``v`` is signed (negative while reversing), and every limit
+applies to ``|v|`` the same both ways. *Profile*: the classic forward-backward pass over the samples
 (forward from rest, ``v_{i+1}^2 <= v_i^2 + 2 a_max ds_i``; backward from rest at the end,
 ``v_i^2 <= v_{i+1}^2 + 2 a_max ds_i``; each sample's speed the least of its cap and both
 passes), each sample capped by the speed limits of the intervals on either side; between
@@ -89,7 +109,7 @@ DEFAULT_STEP = 0.05
 #: of two unions that meet smoothly agree to about 1e-15 / L. Set by hand in issue 27.
 JUMP_TOL = 1e-9
 #: The columns of :class:`PathSamples` (CSV order).
-POSE_COLUMNS = ("s", "x", "y", "theta", "x_front", "y_front", "kappa", "steer", "union")
+POSE_COLUMNS = ("s", "x", "y", "theta", "x_front", "y_front", "kappa", "steer", "union", "direction")
 #: The columns of :class:`Trajectory` (CSV order).
 TRAJECTORY_COLUMNS = ("t", "s", "v", "a") + POSE_COLUMNS[1:]
 
@@ -112,20 +132,24 @@ class PathSamples:
     Attributes
     ----------
     s : ndarray
-        Arc length of the rear point A from the start (m); non-decreasing, repeated at the
-        interior nodes (two rows each).
+        Arc length travelled by the rear point A from the start (m); non-decreasing,
+        repeated at the interior nodes (two rows each).
     x, y : ndarray
         A, world coordinates (m).
     theta : ndarray
-        Heading of A->B (radians), continuous along the plan (not wrapped; the yaw).
+        Heading of A->B (radians), continuous along the plan (not wrapped; the yaw); the
+        robot's heading also while it reverses.
     x_front, y_front : ndarray
         The front wheel B (m).
     kappa : ndarray
-        Signed curvature of A's path (1/m; positive turning left).
+        Signed curvature of A's path along the heading, ``d theta / d sigma`` (1/m; positive
+        turning left when driven forwards; module docstring, "reverse links").
     steer : ndarray
-        Steering angle ``arctan(L kappa)`` (radians).
+        Steering angle ``arctan(L kappa)`` (radians), the same driving either way.
     union : ndarray of int
         The union each row belongs to.
+    direction : ndarray of int
+        ``1`` driving forwards, ``-1`` reversing (the row's link's direction).
     frame_x : ndarray
         Abscissa of each row in its union's alpha frame (m); not a CSV column.
     L : float
@@ -144,6 +168,7 @@ class PathSamples:
     kappa: np.ndarray
     steer: np.ndarray
     union: np.ndarray
+    direction: np.ndarray
     frame_x: np.ndarray
     L: float
     step: float
@@ -161,7 +186,9 @@ class PathSamples:
 
     def nav_path(self, frame_id: str = "map", stamp: float = 0.0) -> dict:
         """The poses as a ``nav_msgs/Path``-shaped dict, each stamped ``stamp``
-        (:func:`segplan.planning.export.nav_path`; a node listed once)."""
+        (:func:`segplan.planning.export.nav_path`; a node listed once). ``nav_msgs/Path``
+        has no direction: a reversing pose is listed in driving order with the robot's
+        heading (it moves against it); the direction is the CSV's ``direction`` column."""
         return nav_path(self.x, self.y, self.theta, frame_id=frame_id, stamp=stamp)
 
     def save_nav_path(self, path, frame_id: str = "map") -> None:
@@ -200,7 +227,20 @@ def _abscissae(u: Union, step: float) -> tuple[np.ndarray, float]:
     return np.concatenate(([0.0], x, [X])), S
 
 
-def sample_path(unions: Sequence[Union], step: float = DEFAULT_STEP) -> PathSamples:
+def _check_directions(directions, n: int) -> tuple:
+    """``directions`` as :attr:`segplan.Plan.link_directions`: ``()`` is all forwards, else
+    one ``1`` or ``-1`` per union."""
+    directions = tuple(directions)
+    if not directions:
+        return (1,) * n
+    if len(directions) != n or any(isinstance(d, bool) or d not in (1, -1) for d in directions):
+        raise ValueError(f"directions must be () or 1 or -1 for each of {n} unions, got {directions!r}")
+    return tuple(int(d) for d in directions)
+
+
+def sample_path(
+    unions: Sequence[Union], step: float = DEFAULT_STEP, directions: Sequence[int] = ()
+) -> PathSamples:
     """Sample a chain of unions by the arc length of the rear point (module docstring).
 
     Parameters
@@ -209,6 +249,10 @@ def sample_path(unions: Sequence[Union], step: float = DEFAULT_STEP) -> PathSamp
         Consecutive unions of one robot (a plan's ``unions``).
     step : float
         Largest spacing (m) of the samples along the rear path, > 0.
+    directions : sequence of int
+        :attr:`segplan.Plan.directions`: ``()`` (every union forwards) or ``1`` / ``-1``
+        per union; a backward union is driven from its ``p1`` to its ``p0`` (module
+        docstring, "reverse links").
 
     Returns
     -------
@@ -217,30 +261,39 @@ def sample_path(unions: Sequence[Union], step: float = DEFAULT_STEP) -> PathSamp
     Raises
     ------
     ValueError
-        No unions, unions of different ``L``, a bad ``step``.
+        No unions, unions of different ``L``, a bad ``step`` or ``directions``.
     """
     unions = _check_unions(unions)
     step = check_option(step, "step (m)", 0.0)
+    directions = _check_directions(directions, len(unions))
     L = unions[0].L
     blocks = []
     s0 = 0.0
-    theta0 = float(unions[0].p0.theta)  # the continuous heading starts at the start node's
-    for k, u in enumerate(unions):
+    first = unions[0]
+    theta0 = float(first.p0.theta if directions[0] > 0 else first.p1.theta)  # the start node's heading
+    for k, (u, d) in enumerate(zip(unions, directions, strict=True)):
         x, S = _abscissae(u, step)
         _, c1, _, _ = u.coefficients
         A = u.to_world(x, u.f(x))
         A[0] = u.p0.x, u.p0.y  # the nodes exactly
         A[-1] = u.p1.x, u.p1.y
-        theta = theta0 + (np.arctan(u.slope(x)) - math.atan(c1))  # frame angle + arctan f', unwrapped
-        theta[0] = theta0
-        theta1 = u.p1.theta + 2.0 * math.pi * round((theta[-1] - u.p1.theta) / (2.0 * math.pi))
-        theta[-1] = theta1  # the end node's heading, on the continuous branch
-        kappa = u.curvature(x)  # f'' / (1 + f'^2)^(3/2)
+        # the robot enters at p0 (row 0) forwards, at p1 (the last row) backwards
+        enter, leave, end = (0, -1, u.p1) if d > 0 else (-1, 0, u.p0)
+        turn_in = math.atan(c1) if d > 0 else math.atan(float(u.slope(x[-1])))  # f' where it enters
+        theta = theta0 + (np.arctan(u.slope(x)) - turn_in)  # frame angle + arctan f', unwrapped
+        theta[enter] = theta0
+        theta1 = end.theta + 2.0 * math.pi * round((theta[leave] - end.theta) / (2.0 * math.pi))
+        theta[leave] = theta1  # the node it leaves the union at, on the continuous branch
+        kappa = u.curvature(x)  # f'' / (1 + f'^2)^(3/2): d theta / d sigma, either way
+        if d < 0:  # driving order (as segplan.viz.metrics.plan_poses)
+            x, A, theta, kappa = x[::-1], A[::-1], theta[::-1], kappa[::-1]
         s = s0 + S * np.arange(x.size) / (x.size - 1)
         s[-1] = s0 + S
-        blocks.append((s, A, theta, kappa, np.full(x.size, k), x))
+        blocks.append((s, A, theta, kappa, np.full(x.size, k), np.full(x.size, d), x))
         s0, theta0 = s0 + S, theta1
-    s, A, theta, kappa, index, frame_x = (np.concatenate(parts) for parts in zip(*blocks, strict=True))
+    s, A, theta, kappa, index, direction, frame_x = (
+        np.concatenate(parts) for parts in zip(*blocks, strict=True)
+    )
     B = A + L * np.column_stack((np.cos(theta), np.sin(theta)))  # B = A + L (cos theta, sin theta)
     return PathSamples(
         s=_frozen(s),
@@ -252,6 +305,7 @@ def sample_path(unions: Sequence[Union], step: float = DEFAULT_STEP) -> PathSamp
         kappa=_frozen(kappa),
         steer=_frozen(np.arctan(L * kappa)),  # tan(steer) = L kappa
         union=_frozen(index, dtype=np.int64),
+        direction=_frozen(direction, dtype=np.int64),
         frame_x=_frozen(frame_x),
         L=float(L),
         step=step,
@@ -309,7 +363,9 @@ class PlanFacts:
         return float(inner.max()) if inner.size else 0.0
 
 
-def plan_facts(unions: Sequence[Union], max_steer: float | None = None) -> PlanFacts:
+def plan_facts(
+    unions: Sequence[Union], max_steer: float | None = None, directions: Sequence[int] = ()
+) -> PlanFacts:
     """The steering at each node on each side, its jumps, the largest curvature against the limit.
 
     Parameters
@@ -318,19 +374,24 @@ def plan_facts(unions: Sequence[Union], max_steer: float | None = None) -> PlanF
         A plan's unions.
     max_steer : float, optional
         The robot's steering limit (radians, in ``(0, pi/2)``; ``Robot.max_steer``).
+    directions : sequence of int
+        As :func:`sample_path`: a backward union arrives at the node of its ``p0`` and
+        leaves the one of its ``p1`` (its steering angles as in the module docstring).
 
     Returns
     -------
     PlanFacts
     """
     unions = _check_unions(unions)
+    directions = _check_directions(directions, len(unions))
     if max_steer is not None and not (isinstance(max_steer, int | float) and 0.0 < max_steer < 0.5 * math.pi):
         raise ValueError(f"max_steer must lie in (0, pi/2) radians, got {max_steer!r}")
     L = unions[0].L
     nan = np.full(len(unions) + 1, np.nan)
     kappa_in, kappa_out = nan.copy(), nan.copy()
-    kappa_out[:-1] = [float(u.curvature(0.0)) for u in unions]
-    kappa_in[1:] = [float(u.curvature(u.x_end)) for u in unions]
+    ends = [(0.0, u.x_end)[:: 1 if d > 0 else -1] for u, d in zip(unions, directions, strict=True)]
+    kappa_out[:-1] = [float(u.curvature(a)) for u, (a, _) in zip(unions, ends, strict=True)]
+    kappa_in[1:] = [float(u.curvature(b)) for u, (_, b) in zip(unions, ends, strict=True)]
     steer_in, steer_out = np.arctan(L * kappa_in), np.arctan(L * kappa_out)
     max_k = max(u.max_curvature() for u in unions)
     limit = None if max_steer is None else math.tan(max_steer) / L
@@ -434,19 +495,26 @@ class Trajectory:
     s, x, y, theta, x_front, y_front, kappa, steer, union, frame_x :
         As in :class:`PathSamples`.
     v : ndarray
-        Speed of the rear point A (m/s); the front wheel's is ``v / cos(steer)``.
+        Velocity of the rear point A along the heading (m/s): its speed, negative while
+        reversing (``direction``); the front wheel's is ``v / cos(steer)``.
     a : ndarray
         Acceleration ``dv/dt`` from each row to the next (m/s^2; constant in between; 0 on the
         last row and while standing).
+    direction : ndarray of int
+        As in :class:`PathSamples`: ``1`` forwards, ``-1`` reversing.
     total_time : float
         ``t[-1]`` (s).
     jump_time : float
         What the steering jumps cost (s): ``total_time`` minus the time of the same profile
-        with the jumps ignored (no stop, no re-steering); it includes :attr:`dwell_time`.
+        with the jumps ignored (no stop, no re-steering; the stops at the cusps kept); it
+        includes :attr:`dwell_time`.
     dwell_time : float
         Time spent standing to re-steer, ``sum |jump| / steer_rate_max`` (s).
     jumps : int
-        Nodes where the robot stops to re-steer (steering steps above ``jump_tol``).
+        Nodes where the robot stops to re-steer (steering steps above ``jump_tol``; at a
+        cusp too, where it stops anyway).
+    cusps : int
+        Nodes where the robot stops to change direction.
     v_max, a_max, a_lat_max, steer_rate_max : float
         The limits the law respects (m/s, m/s^2, m/s^2, rad/s).
     step : float
@@ -467,11 +535,13 @@ class Trajectory:
     kappa: np.ndarray
     steer: np.ndarray
     union: np.ndarray
+    direction: np.ndarray
     frame_x: np.ndarray
     total_time: float
     jump_time: float
     dwell_time: float
     jumps: int
+    cusps: int
     v_max: float
     a_max: float
     a_lat_max: float
@@ -492,7 +562,8 @@ class Trajectory:
 
     def nav_path(self, frame_id: str = "map", stamp: float = 0.0) -> dict:
         """The poses as a ``nav_msgs/Path``-shaped dict, stamped ``stamp + t``
-        (:func:`segplan.planning.export.nav_path`)."""
+        (:func:`segplan.planning.export.nav_path`); reversing poses as in
+        :meth:`PathSamples.nav_path` (the sign is ``v``'s, in the CSV)."""
         return nav_path(self.x, self.y, self.theta, self.t, frame_id=frame_id, stamp=stamp)
 
     def save_nav_path(self, path, frame_id: str = "map") -> None:
@@ -529,6 +600,7 @@ def time_law(
     *,
     step: float = DEFAULT_STEP,
     jump_tol: float = JUMP_TOL,
+    directions: Sequence[int] = (),
 ) -> Trajectory:
     """A time law along a chain of unions that respects every limit (module docstring).
 
@@ -549,6 +621,8 @@ def time_law(
     jump_tol : float
         Steering steps at a node up to this (radians, >= 0) are rounding and driven through;
         larger ones stop the robot (the jump model).
+    directions : sequence of int
+        As :func:`sample_path`; the robot stops at each cusp.
 
     Returns
     -------
@@ -565,15 +639,16 @@ def time_law(
     rate = check_option(steer_rate_max, "steer_rate_max (rad/s)", 0.0)
     jump_tol = check_option(jump_tol, "jump_tol (rad)", 0.0, lo_ok=True)
     unions = _check_unions(unions)
-    path = sample_path(unions, step)
+    path = sample_path(unions, step, directions)
     n = len(path)
     ds = np.diff(path.s)
     # per interval: the speed its curvature and steering slope allow (inf between two rows of a node)
     k_max, slope = np.zeros(n - 1), np.zeros(n - 1)
     for k, u in enumerate(unions):
         rows = np.flatnonzero(path.union == k)
-        km, sl = interval_bounds(u, path.frame_x[rows])
-        k_max[rows[:-1]], slope[rows[:-1]] = km, sl
+        order = 1 if path.direction[rows[0]] > 0 else -1  # a backward union's rows: x decreasing
+        km, sl = interval_bounds(u, path.frame_x[rows][::order])
+        k_max[rows[:-1]], slope[rows[:-1]] = km[::order], sl[::order]
     with np.errstate(divide="ignore"):
         allowed = np.minimum(np.sqrt(a_lat_max / k_max), rate / slope)  # v^2 kappa <= a_lat, v steer' <= rate
     allowed = np.minimum(allowed, v_max)
@@ -581,8 +656,11 @@ def time_law(
     cap[0] = cap[-1] = 0.0  # at rest at both ends
     node_link = ds == 0.0  # the two rows of an interior node
     jump = np.where(node_link, np.abs(np.diff(path.steer)), 0.0)
-    stops = jump > jump_tol
-    dwell = np.where(stops, jump / rate, 0.0)  # re-steering standing: |jump| / steer_rate_max
+    cusp = node_link & (np.diff(path.direction) != 0)  # stop, then drive the other way
+    stops = (jump > jump_tol) | cusp
+    dwell = np.where(jump > jump_tol, jump / rate, 0.0)  # re-steering standing: |jump| / steer_rate_max
+    cap[:-1][cusp] = 0.0
+    cap[1:][cusp] = 0.0
     free = _profile(ds, cap, a_max)  # the jumps ignored
     cap[:-1][stops] = 0.0
     cap[1:][stops] = 0.0
@@ -596,8 +674,8 @@ def time_law(
     return Trajectory(
         t=_frozen(t),
         s=path.s,
-        v=_frozen(v),
-        a=_frozen(acc),
+        v=_frozen(v * path.direction + 0.0),  # signed: negative while reversing (+ 0.0: no -0.0)
+        a=_frozen(acc * path.direction + 0.0),
         x=path.x,
         y=path.y,
         theta=path.theta,
@@ -606,11 +684,13 @@ def time_law(
         kappa=path.kappa,
         steer=path.steer,
         union=path.union,
+        direction=path.direction,
         frame_x=path.frame_x,
         total_time=float(t[-1]),
         jump_time=float(t[-1]) - t_free,
         dwell_time=float(np.sum(dwell)),
-        jumps=int(np.count_nonzero(stops)),
+        jumps=int(np.count_nonzero(jump > jump_tol)),
+        cusps=int(np.count_nonzero(cusp)),
         v_max=v_max,
         a_max=a_max,
         a_lat_max=a_lat_max,

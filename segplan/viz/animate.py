@@ -14,7 +14,10 @@ the floor.
 Frames are equally spaced in the *front wheel's* arc length, the paper's cost: the robot
 moves at constant front-wheel speed, as the cost assumes (traversal time). By default
 their number follows the path's length (:func:`frame_count`), so a long plan is not a
-few jumps and a short one is not a slow crawl.
+few jumps and a short one is not a slow crawl. A plan that reverses (beyond the paper,
+issue 26) is driven in driving order, the robot backing up along its reverse links: frames
+by the travelled length, :data:`CUSP_FRAMES` more at each cusp (the robot stands to change
+direction), the rear trace of the reversing stretches in its own colour, named in the legend.
 
 Outputs, both offline: :func:`to_html` (matplotlib's ``to_jshtml``: PNG frames and a
 small player in one HTML string, no network) and :func:`save_gif` (Pillow, installed with
@@ -37,12 +40,13 @@ import numpy as np
 from ..floor.geometry import finite_number
 from ..floor.scenario import Robot
 from ..model.pose import check_length
-from .metrics import plan_poses
+from .metrics import plan_pose_directions
 
 if TYPE_CHECKING:
     from matplotlib.animation import FuncAnimation
 
 __all__ = [
+    "CUSP_FRAMES",
     "DPI",
     "DPI_RANGE",
     "FIGSIZE",
@@ -85,6 +89,12 @@ MIN_FRAMES = 24
 #: drawn in full) and the file's size for a long plan on a large map; beyond it the frames
 #: are spaced more widely.
 MAX_FRAMES = 200
+#: Frames added at each cusp of a reversing path, the robot standing there: 0.2 s at
+#: :data:`FPS`, seen as a pause, not a stall. Set by hand (issue 26); not measured.
+CUSP_FRAMES = 2
+#: Legend label and colour of the rear path where the robot reverses.
+REVERSE_LABEL = "rear path A, reversing"
+REVERSE_COLOR = "tab:purple"
 
 
 def _whole(value, name: str, low: int, high: int | None = None) -> int:
@@ -143,6 +153,15 @@ def _frame_indices(poses: np.ndarray, L: float, frames: int) -> np.ndarray:
     return idx
 
 
+def _trace(A: np.ndarray, steps: np.ndarray) -> np.ndarray:
+    """The points ``A`` at either end of the ``steps`` (``steps[j]``: from point ``j`` to
+    ``j + 1``), the others ``nan`` (a gap in the line drawn); ``A`` itself when every step is."""
+    if steps.all():
+        return A
+    kept = np.r_[steps, False] | np.r_[False, steps]
+    return np.where(kept[:, None], A, np.nan)
+
+
 def body_label(robot: Robot) -> str:
     """Legend label of the robot's body: its half-width, and its overhangs and shape if set."""
     text = f"robot, half-width {robot.half_width:g} m"
@@ -162,6 +181,7 @@ def animate_path(
     dpi: float = DPI,
     figsize: tuple[float, float] = FIGSIZE,
     title: str | None = None,
+    directions=None,
 ) -> FuncAnimation:
     """An animation of the robot following ``poses``.
 
@@ -190,6 +210,11 @@ def animate_path(
     figsize : (width, height)
         Size of a frame in inches.
     title : str, optional
+    directions : array_like of int, shape (n,), optional
+        ``1`` or ``-1`` per pose, the direction of the motion that reaches it
+        (:func:`segplan.viz.metrics.plan_pose_directions`); default all forwards. Each cusp
+        (a pose whose direction differs from the next one's) gets :data:`CUSP_FRAMES` more
+        frames, and the reversing stretches of the rear path their own colour and legend entry.
 
     Returns
     -------
@@ -200,8 +225,8 @@ def animate_path(
     Raises
     ------
     ValueError
-        Malformed ``poses``, ``L`` or ``half_width``, or ``frames``, ``fps``, ``dpi`` out of
-        range (:func:`check_animation`).
+        Malformed ``poses``, ``L``, ``half_width`` or ``directions``, or ``frames``, ``fps``,
+        ``dpi`` out of range (:func:`check_animation`).
     """
     import matplotlib.pyplot as plt
     from matplotlib.animation import FuncAnimation
@@ -213,6 +238,9 @@ def animate_path(
     if P.ndim != 2 or P.shape[1] != 3 or len(P) < 2 or not np.isfinite(P).all():
         raise ValueError(f"poses must be a finite (n, 3) array with n >= 2, got shape {P.shape}")
     L = check_length(L, "L")
+    D = np.ones(len(P), dtype=np.int64) if directions is None else np.asarray(directions)
+    if D.shape != (len(P),) or not np.isin(D, (1, -1)).all():
+        raise ValueError(f"directions must hold 1 or -1 for each of the {len(P)} poses")
     frames, fps, dpi = check_animation(frames, fps, dpi)
     if half_width is None:
         half_width = 0.0 if scenario is None else scenario.robot.half_width
@@ -225,6 +253,10 @@ def animate_path(
     if frames is None:
         frames = frame_count(_front_arc_length(P, L)[-1], L)
     idx = _frame_indices(P, L, frames)
+    cusps = np.flatnonzero(D[:-1] != D[1:])  # the robot stands there: a pause
+    idx = np.sort(np.concatenate((idx, np.repeat(cusps, CUSP_FRAMES))))
+    back = D[1:] < 0  # the step from each pose to the next is driven backwards
+    A_ahead, A_back = (_trace(A, steps) for steps in (~back, back))  # the rear path, split by direction
 
     fig, ax = plt.subplots(figsize=figsize, dpi=dpi, layout="constrained")
     if scenario is not None:
@@ -247,6 +279,8 @@ def animate_path(
         ax.set_title(title, fontsize="medium")
     (rear,) = ax.plot([], [], color="tab:blue", lw=1.5, label=REAR_LABEL)
     (front,) = ax.plot([], [], color="tab:orange", lw=1.2, ls="--", label=FRONT_LABEL)
+    label = REVERSE_LABEL if back.any() else "_nolegend_"
+    (reversing,) = ax.plot([], [], color=REVERSE_COLOR, lw=1.5, label=label)
     body = PolygonPatch(
         outline,
         closed=True,
@@ -267,14 +301,16 @@ def animate_path(
 
     def draw(k: int):
         i = idx[k] + 1
-        rear.set_data(A[:i, 0], A[:i, 1])
+        rear.set_data(A_ahead[:i, 0], A_ahead[:i, 1])
+        reversing.set_data(A_back[:i, 0], A_back[:i, 1])
         front.set_data(B[:i, 0], B[:i, 1])
         j = i - 1
         c, s = math.cos(P[j, 2]), math.sin(P[j, 2])
         body.set_xy(outline @ np.array([[c, s], [-s, c]]) + A[j])
         segment.set_data([A[j, 0], B[j, 0]], [A[j, 1], B[j, 1]])
         wheel.set_data([B[j, 0]], [B[j, 1]])
-        return rear, front, body, segment, wheel
+        segment.set_color(REVERSE_COLOR if j + 1 < len(P) and back[j] else "k")  # about to reverse
+        return rear, front, body, segment, wheel, reversing
 
     anim = FuncAnimation(fig, draw, frames=len(idx), interval=1000.0 / fps, blit=False)
     plt.close(fig)
@@ -284,14 +320,15 @@ def animate_path(
 def animate_plan(plan, scenario, **kwargs) -> FuncAnimation:
     """:func:`animate_path` of a segplan :class:`~segplan.planning.plan.Plan` on its scenario.
 
-    The poses are the plan's unions sampled every centimetre
-    (:func:`segplan.viz.metrics.plan_poses`); ``kwargs`` go to :func:`animate_path`
-    (``frames``, ``fps``, ``dpi``, ``half_width``, ``figsize``, ``title``).
+    The poses are the plan's unions sampled every centimetre in driving order, with their
+    directions (:func:`segplan.viz.metrics.plan_pose_directions`); ``kwargs`` go to
+    :func:`animate_path` (``frames``, ``fps``, ``dpi``, ``half_width``, ``figsize``, ``title``).
     """
     unions = list(getattr(plan, "unions", ()))
     if not unions:
         raise ValueError("plan must be a segplan.Plan with at least one union")
-    return animate_path(plan_poses(plan), scenario.robot.L, scenario, **kwargs)
+    poses, directions = plan_pose_directions(plan)
+    return animate_path(poses, scenario.robot.L, scenario, directions=directions, **kwargs)
 
 
 #: The player's Font Awesome icons (matplotlib links their stylesheet from a CDN) as plain

@@ -66,6 +66,7 @@ __all__ = [
     "measure_scenario_path",
     "plan_clearance",
     "plan_poses",
+    "plan_pose_directions",
     "se2_poses",
     "union_poses",
 ]
@@ -320,13 +321,24 @@ def plan_poses(plan, step: float = DEFAULT_STEP) -> np.ndarray:
     step : float
         Largest spacing (m) of the samples of A and B, see :func:`union_poses`.
     """
+    return plan_pose_directions(plan, step)[0]
+
+
+def plan_pose_directions(plan, step: float = DEFAULT_STEP) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`plan_poses` and, per pose, the direction of the motion that reaches it (``1``
+    forwards, ``-1`` reversing; the start's the first link's): a cusp is a pose whose
+    direction differs from the next one's (:func:`segplan.viz.animate.animate_path` pauses there)."""
     unions = list(getattr(plan, "unions", plan))
     if not unions:
         raise ValueError("plan must hold at least one segplan.Union")
     directions = getattr(plan, "link_directions", None) or (1,) * len(unions)
     parts = [union_poses(u, step)[:: 1 if d > 0 else -1] for u, d in zip(unions, directions, strict=True)]
-    # consecutive unions share their node: keep it once
-    return np.concatenate([parts[0]] + [p[1:] for p in parts[1:]])
+    # consecutive unions share their node: keep it once (with the link that reaches it)
+    parts = [parts[0]] + [p[1:] for p in parts[1:]]
+    signs = np.concatenate(
+        [np.full(len(p), d, dtype=np.int64) for p, d in zip(parts, directions, strict=True)]
+    )
+    return np.concatenate(parts), signs
 
 
 def se2_poses(states: Iterable) -> np.ndarray:
