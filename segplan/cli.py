@@ -40,6 +40,7 @@ from . import __version__
 from .floor.maps import Floor
 from .floor.ros_map import load_ros_map
 from .floor.scenario import (
+    FOOTPRINT_KEYS,
     Robot,
     Scenario,
     ScenarioError,
@@ -93,8 +94,8 @@ scenario file (JSON, lengths in metres, angles in degrees):
   segplan draw my_floor.json, then segplan plan my_floor.json
 
 output: cost, nodes (x, y in m, theta in deg), expansions, generated nodes, time,
-the planner. With --json, one JSON object on stdout instead (with the planner and
-every option that made the plan). With --out, a figure with the
+the planner. With --json, one JSON object on stdout instead (with the planner,
+every option that made the plan, the robot's overhangs). With --out, a figure with the
 obstacles (enlarged by half_width, lighter), the rear path (solid), the front-wheel
 path (dashed) and the robot at intervals, the legend beside the floor. With --animate,
 the robot (its body as wide as 2 half_width) driving the plan.
@@ -473,11 +474,8 @@ def _load(args, *, poses_needed: bool = True) -> Scenario | Floor:
 
 def _floor_facts(floor: Scenario | Floor) -> tuple[str, str, str]:
     """A floor in words: its size, its obstacles, its robot ("-" for a map's floor)."""
-    if floor.bounds is None:
-        size = "no walls"
-    else:
-        xmin, ymin, xmax, ymax = floor.bounds
-        size = f"{xmax - xmin:g} x {ymax - ymin:g} m"
+    b = floor.bounds
+    size = "no walls" if b is None else f"{b[2] - b[0]:g} x {b[3] - b[1]:g} m"
     n = len(floor.outlines)
     obstacles = f"{n} obstacle{'s' if n != 1 else ''}"
     if len(floor.obstacles) != n:
@@ -770,7 +768,8 @@ def _plan(args, scenario: Scenario, name: str) -> int:
         return _error(str(exc))
     facts = _what_the_plan_is(result, scenario)
     if args.json:
-        out = {"scenario": name, "found": True, **result.to_dict(), "plan_facts": facts, **written}
+        body = {k: v for k, v in scenario.to_dict().items() if k in FOOTPRINT_KEYS}  # only when set
+        out = {"scenario": name, "found": True, **result.to_dict(), **body, "plan_facts": facts, **written}
         print(json.dumps(out, indent=2))
     else:
         print("\n".join([_format_plan(result, name), *_format_facts(facts), *written_lines]))

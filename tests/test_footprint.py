@@ -280,3 +280,115 @@ def test_random_worlds_with_bodies_give_no_invalid_plan():
         plans += 1
         assert body_hits(robot, plan_poses(plan, 0.01), sc) == 0, seed
     assert plans >= 6
+
+
+# -- saved plans, plan(), the shipped forklift ----------------------------------------------------
+def test_saved_plans_keep_the_body_and_old_records_load(tmp_path, capsys):
+    from segplan.planning.plan import Plan, plan_from_record, plan_record, saved_robot
+
+    sc = segplan.load_scenario("forklift_aisle")
+    plan = segplan.plan_scenario(sc)
+    path = plan.save(tmp_path / "p.json", sc)
+    record = json.loads(path.read_text())
+    assert {k: record[k] for k in FOOTPRINT_KEYS} == {k: getattr(sc.robot, k) for k in FOOTPRINT_KEYS}
+    assert Plan.load(path) == plan and saved_robot(path) == saved_robot(record) == sc.robot
+    old = {k: v for k, v in plan_record(plan, sc).items() if k not in FOOTPRINT_KEYS}  # before footprints
+    assert plan_from_record(old) == plan
+    assert saved_robot(old) == replace(sc.robot, front_overhang=0.0, rear_overhang=0.0, rectangle=False)
+    assert saved_robot(plan_record(plan)) is None  # saved without its floor: no robot
+    with pytest.raises(ValueError, match="robot: front_overhang must be >= 0"):
+        plan_from_record(record | {"front_overhang": -0.2})
+    with pytest.raises(ValueError, match="robot: rectangle must be True or False"):
+        saved_robot(record | {"rectangle": "yes"})
+    assert main(["plan", "forklift_aisle", "--json"]) == 0  # --json: the body too, when there is one
+    out = json.loads(capsys.readouterr().out)
+    assert {k: out[k] for k in FOOTPRINT_KEYS} == {
+        "front_overhang": 1.1,
+        "rear_overhang": 0.5,
+        "rectangle": True,
+    }
+    assert main(["plan", "turn_around", "--json"]) == 0
+    assert not set(FOOTPRINT_KEYS) & set(json.loads(capsys.readouterr().out))
+
+
+def test_plan_takes_the_body_at_the_door():
+    sc = segplan.load_scenario("forklift_aisle")
+    r = sc.robot
+    args = (sc.start, sc.goal, sc.outlines, r.L, sc.bounds, r.half_width, r.max_steer)
+    body = {"front_overhang": 1.1, "rear_overhang": 0.5, "rectangle": True}
+    plan = segplan.plan(*args, **body)
+    assert plan.nodes == segplan.plan_scenario(sc).nodes
+    assert body_hits(r, plan_poses(plan, 0.01), sc) == 0
+    with pytest.raises(ValueError, match="rear_overhang must be >= 0"):
+        segplan.plan(*args, rear_overhang=-0.1)
+    with pytest.raises(ValueError, match="rectangle must be True or False"):
+        segplan.plan(*args, rectangle="no")
+    with pytest.raises(segplan.ScenarioError, match="with overhangs"):  # the forks in the rack at the start
+        segplan.plan((4.5, 6.3, math.pi / 2), *args[1:], front_overhang=1.1)
+
+
+def test_the_forklift_needs_its_footprint():
+    """The shipped forklift (forks 1.1 m ahead, counterweight 0.5 m behind, a rectangle): its
+    plan is clear of the racks, the pillar and the walls at every centimetre; the plan made for
+    the bare segment (same L, half_width, steering) drives the body into them."""
+    sc = segplan.load_scenario("forklift_aisle")
+    assert sc.robot.rectangle and sc.robot.axis == (-0.5, 1.4 + 1.1)
+    plan = segplan.plan_scenario(sc)
+    assert body_hits(sc.robot, plan_poses(plan, 0.01), sc) == 0
+    bare = with_robot(sc, front_overhang=0.0, rear_overhang=0.0, rectangle=False)
+    assert body_hits(sc.robot, plan_poses(segplan.plan_scenario(bare), 0.01), sc) > 0
+
+
+def test_the_peers_validity_checks_the_body():
+    """OMPL's state validity (``SegmentValidity``) and the study floors' pose test
+    (``_FreeTest``) answer as ``Scenario.is_free`` on a robot with a body, and every pose they
+    pass is clear of the body (the dense shapely oracle); the body closes poses the bare
+    segment passes."""
+    from segplan.studies.floors import _FreeTest
+    from segplan.studies.ompl_runner import SegmentValidity
+
+    sc = segplan.load_scenario("forklift_aisle")
+    rng = np.random.default_rng(3)
+    poses = rng.uniform((0.0, 0.0, -math.pi), (22.0, 12.0, math.pi), (2000, 3))
+    for rectangle in (True, False):
+        sc2 = with_robot(sc, rectangle=rectangle)
+        check, free = SegmentValidity(sc2), _FreeTest(sc2.obstacles, sc2.bounds, sc2.robot)
+        answers = [check(*p) for p in poses]
+        assert answers == [sc2.is_free(p) for p in poses] == [free(tuple(p)) for p in poses]
+        assert body_hits(sc2.robot, poses[np.array(answers)], sc2) == 0
+    bare = SegmentValidity(with_robot(sc, front_overhang=0.0, rear_overhang=0.0, rectangle=False))
+    assert sum(bare(*p) for p in poses) > sum(answers) > 200
+
+
+def test_plan_drawings_show_the_body_at_the_robot_poses():
+    """plot_plan / plot_union draw the footprint at every robot pose drawn, placed from the
+    union's own rear and front points; for the paper's robot the drawing is unchanged (the same
+    lines, no patch)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Polygon as PolygonPatch
+
+    from segplan.viz import plot
+
+    sc = segplan.load_scenario("forklift_aisle")
+    plan = segplan.plan_scenario(sc)
+    ax = plot.plot_plan(plan.unions, robots=3, robot=sc.robot)
+    bodies = [p.get_xy()[:4] for p in ax.patches if isinstance(p, PolygonPatch)]
+    assert len(bodies) == 3 * len(plan.unions)
+    for u in plan.unions:
+        for a, b in zip(u.rear(3), u.front(3), strict=True):
+            th = math.atan2(b[1] - a[1], b[0] - a[0])
+            c, s = math.cos(th), math.sin(th)
+            expect = sc.robot.footprint() @ np.array([[c, s], [-s, c]]) + a
+            assert any(np.allclose(q, expect, atol=1e-12) for q in bodies)
+            assert shapely.Polygon(expect).distance(shapely.Point(a)) == 0  # A inside the body
+    plt.close("all")
+    paper = segplan.load_scenario("turn_around")
+    unions = segplan.plan_scenario(paper).unions
+    drawn = []
+    for robot in (None, paper.robot):
+        ax = plot.plot_plan(unions, robots=3, robot=robot)
+        drawn.append(([ln.get_xydata().tolist() for ln in ax.lines], len(ax.patches)))
+        plt.close("all")
+    assert drawn[0] == drawn[1] and drawn[0][1] == 0
+    with pytest.raises(ValueError, match="robot must be a segplan.Robot"):
+        plot.plot_union(unions[0], robot="forklift")

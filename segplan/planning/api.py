@@ -62,6 +62,10 @@ def plan(
     half_width: float = 0.0,
     max_steer: float = math.radians(45.0),
     heuristic: str = "a",
+    *,
+    front_overhang: float = 0.0,
+    rear_overhang: float = 0.0,
+    rectangle: bool = False,
     **options,
 ) -> Plan:
     """Plan a forward-only path of the segment robot from ``start`` to ``goal``.
@@ -93,10 +97,13 @@ def plan(
     max_steer : float
         Steering limit (radians, in ``(0, pi/2)``): rear-path curvature at most
         ``tan(max_steer) / L`` on every union.
+    front_overhang, rear_overhang, rectangle
+        The robot's body beyond the segment (beyond the paper, :class:`segplan.Robot`): its
+        reach ahead of B and behind A (>= 0, m), and a rectangle instead of round ends.
     heuristic, **options
         See :func:`plan_scenario`.
     """
-    robot = Robot(L, half_width, max_steer)
+    robot = Robot(L, half_width, max_steer, front_overhang, rear_overhang, rectangle)
     scenario = make_scenario(robot, start, goal, obstacles, bounds, source="plan()")
     return plan_scenario(scenario, heuristic=heuristic, **options)
 

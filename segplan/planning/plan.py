@@ -21,7 +21,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..floor.scenario import Scenario
+from ..floor.scenario import FOOTPRINT_KEYS, Robot, Scenario
 from ..model.cost import chain_longd
 from ..model.pose import Pose
 from ..model.union import Union
@@ -53,6 +53,7 @@ __all__ = [
     "plain_directions",
     "plan_from_record",
     "plan_record",
+    "saved_robot",
     "union_longd",
     "unions_longd",
 ]
@@ -328,8 +329,8 @@ class Plan:
     def save(self, path, scenario: Scenario | None = None) -> Path:
         """Write the plan to ``path`` as JSON (:func:`plan_record`); :meth:`load` reads it back,
         equal bit for bit. With ``scenario`` (the floor it was planned on) the file also
-        records the robot (``L``, ``half_width``, ``max_steer``) and the floor's name and
-        file. Returns the path written."""
+        records the robot (``L``, ``half_width``, ``max_steer`` and the body, which
+        :func:`saved_robot` reads back) and the floor's name and file. Returns the path written."""
         path = Path(path)
         text = json.dumps(plan_record(self, scenario), indent=1, allow_nan=False)
         path.write_text(text + "\n", encoding="utf-8")
@@ -347,12 +348,16 @@ class Plan:
             The file is not a saved plan, or a value in it is malformed or inconsistent
             (named).
         """
-        path = Path(path)
-        try:
-            record = json.loads(path.read_text(encoding="utf-8"))
-        except json.JSONDecodeError as exc:
-            raise ValueError(f"{path} is not JSON: {exc}") from None
-        return plan_from_record(record)
+        return plan_from_record(_read(path))
+
+
+def _read(path) -> dict:
+    """The JSON of the file at ``path`` (ValueError naming it if it is not JSON)."""
+    path = Path(path)
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path} is not JSON: {exc}") from None
 
 
 def link_ends(start, unions, directions=()) -> tuple:
@@ -422,10 +427,12 @@ def plan_record(plan: Plan, scenario: Scenario | None = None) -> dict:
 
     The keys of :meth:`Plan.to_dict` as they are (angles in degrees, for reading), and:
     ``format`` (:data:`PLAN_FORMAT`) and ``format_version``; ``L`` (m); ``max_steer``
-    (radians) and ``half_width`` (m) of the robot and ``floor`` (``{"name", "path"}`` of the
-    scenario), each None unless ``scenario`` is given; ``iterations``; and ``exact``: the
-    nodes ``[x, y, theta]`` in radians and each union's :meth:`segplan.Union.state`. Every
-    float is written by ``repr`` (Python's ``json``), which reads back as the same double.
+    (radians), ``half_width`` (m) and the body (``front_overhang``, ``rear_overhang`` (m),
+    ``rectangle``: :class:`segplan.Robot`) of the robot and ``floor`` (``{"name", "path"}``
+    of the scenario), each None unless ``scenario`` is given (:func:`saved_robot`);
+    ``iterations``; and ``exact``: the nodes ``[x, y, theta]`` in radians and each union's
+    :meth:`segplan.Union.state`. Every float is written by ``repr`` (Python's ``json``),
+    which reads back as the same double.
 
     Raises
     ------
@@ -447,8 +454,10 @@ def plan_record(plan: Plan, scenario: Scenario | None = None) -> dict:
         "format_version": PLAN_FORMAT_VERSION,
         **plan.to_dict(),
         "L": L,
-        "max_steer": None if robot is None else robot.max_steer,
-        "half_width": None if robot is None else robot.half_width,
+        **{
+            k: None if robot is None else getattr(robot, k)
+            for k in ("max_steer", "half_width", *FOOTPRINT_KEYS)
+        },
         "floor": floor,
         "iterations": [int(i) for i in plan.iterations],
         "exact": {
@@ -471,6 +480,26 @@ def _field(record: Mapping, name: str, kinds, what: str):
 def _finite(v) -> bool:
     """A finite number, not a bool."""
     return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def saved_robot(saved) -> Robot | None:
+    """The robot a plan was saved with (:meth:`Plan.save` with its scenario), or None (saved
+    without one). ``saved``: the file's path or its record (:func:`plan_record`). A record
+    made before footprints (no body keys) gives the paper's body, the segment A->B.
+
+    Raises
+    ------
+    ValueError
+        Not JSON, or a robot value out of range (named, as by :class:`segplan.Robot`).
+    """
+    record = saved if isinstance(saved, Mapping) else _read(saved)
+    if record.get("max_steer") is None:
+        return None
+    body = {k: record[k] for k in FOOTPRINT_KEYS if record.get(k) is not None}
+    try:
+        return Robot(record.get("L"), record.get("half_width"), record["max_steer"], **body)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"the saved plan's robot: {exc}") from None
 
 
 def plan_from_record(record: Mapping) -> Plan:
@@ -530,6 +559,7 @@ def plan_from_record(record: Mapping) -> Plan:
     stopped = record.get("stopped")
     if stopped not in (None, "time"):
         raise ValueError(f"the saved plan's 'stopped' must be 'time' or null, got {stopped!r}")
+    saved_robot(record)  # its robot, if saved, is one
     return Plan(
         nodes=tuple(nodes),
         unions=unions,

@@ -50,7 +50,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..floor.geometry import enlarge_polygon, pose_collides, pose_in_bounds
+from ..floor.geometry import axis_segment, enlarge_polygon, pose_collides, pose_in_bounds
 from ..floor.random_floors import place_disjoint
 from ..floor.scenario import Robot, Scenario, load_scenario, make_scenario
 from ..model.pose import TWO_PI, wrap_scalar
@@ -151,20 +151,21 @@ def _place_obstacles(rng: np.random.Generator, n: int, bounds) -> list[np.ndarra
 
 class _FreeTest:
     """Is a pose free among the enlarged obstacles and inside the shrunk walls? (the
-    scenario's own tests, :meth:`segplan.Scenario.is_free`, before the scenario exists)."""
+    scenario's own tests, :meth:`segplan.Scenario.is_free`, before the scenario exists; the
+    robot's axis segment with its overhangs, :attr:`segplan.Robot.axis`)."""
 
     def __init__(self, obstacles, bounds, robot: Robot):
         r = robot.half_width
-        self.L = robot.L
+        self.L, self.body = robot.L, {"rear": robot.rear_overhang, "front": robot.front_overhang}
         self.free_bounds = (bounds[0] + r, bounds[1] + r, bounds[2] - r, bounds[3] - r)
         self.polys = [enlarge_polygon(p, r) for p in obstacles]
         self.boxes = np.array([(*p.min(axis=0), *p.max(axis=0)) for p in self.polys]).reshape(-1, 4)
 
     def __call__(self, pose) -> bool:
-        if not pose_in_bounds(pose, self.L, self.free_bounds):
+        if not pose_in_bounds(pose, self.L, self.free_bounds, **self.body):
             return False
-        x, y, th = pose
-        bx, by = x + self.L * math.cos(th), y + self.L * math.sin(th)
+        x, y, dx, dy, _ = axis_segment(*pose, self.L, self.body["rear"], self.body["front"])
+        bx, by = x + dx, y + dy
         b = self.boxes
         near = np.flatnonzero(
             (b[:, 0] <= max(x, bx))
@@ -172,7 +173,7 @@ class _FreeTest:
             & (b[:, 1] <= max(y, by))
             & (min(y, by) <= b[:, 3])
         )
-        return not any(pose_collides(pose, self.L, self.polys[i], check=False) for i in near)
+        return not any(pose_collides(pose, self.L, self.polys[i], check=False, **self.body) for i in near)
 
 
 def _heading(rng: np.random.Generator, kind: str, direction: float) -> float:

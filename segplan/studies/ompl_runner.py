@@ -16,7 +16,8 @@ The peers' problem, made as equal as OMPL allows
   ``(x, y)`` bounded by the scenario's free bounds. The Reeds-Shepp space (same ``R``)
   is run as a *reference only*: it reverses, which neither segplan nor the paper's
   robot does; its paths carry cusps (``reversals``).
-- **Validity**: a state is valid iff the robot's segment A-B at that pose is free of every
+- **Validity**: a state is valid iff the robot's segment A-B at that pose (extended by its
+  overhangs, :attr:`segplan.Robot.axis`, on a robot with a body) is free of every
   *enlarged* obstacle and strictly inside the free bounds: :class:`SegmentValidity`, which
   calls segplan's own pose tests (:func:`segplan.floor.geometry.pose_collides`,
   :func:`segplan.floor.geometry.pose_in_bounds`) behind exact-safe bounding-box filters.
@@ -86,7 +87,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..floor.geometry import as_polygon, pose_collides, pose_in_bounds
+from ..floor.geometry import as_polygon, axis_segment, pose_collides, pose_in_bounds
 from ..floor.scenario import Scenario, load_scenario, scenario_from_dict
 from ..model.pose import TWO_PI, wrap_floor
 from ..viz.metrics import PathMetrics, measure_scenario_path, se2_poses
@@ -174,7 +175,10 @@ def check_seed(seed) -> int:
 class SegmentValidity:
     """Is the robot's segment at ``(x, y, theta)`` free? The planning model of segplan.
 
-    Valid iff :func:`segplan.floor.geometry.pose_in_bounds` holds for the free bounds and
+    The segment is the robot's axis segment, A->B extended by its overhangs
+    (:attr:`segplan.Robot.axis`; A->B itself, the same floats, for the paper's robot), so a
+    robot with a body is checked against the same body as segplan's planner. Valid iff
+    :func:`segplan.floor.geometry.pose_in_bounds` holds for the free bounds and
     :func:`segplan.floor.geometry.pose_collides` is false for every enlarged obstacle. Those
     two functions decide every case that is not clear by a wide margin: a polygon whose
     bounding box, grown by ``margin``, misses the segment's bounding box cannot touch the
@@ -192,13 +196,19 @@ class SegmentValidity:
     def __init__(self, scenario: Scenario):
         if not isinstance(scenario, Scenario):
             raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
-        self.L = scenario.robot.L
+        r = scenario.robot
+        self.L, self.body = r.L, {"rear": r.rear_overhang, "front": r.front_overhang}
         self.bounds = scenario.free_bounds
         self.polygons = [as_polygon(p) for p in scenario.enlarged]
-        extent = self.L + max(
-            [abs(v) for v in (self.bounds or ())]
-            + [float(np.abs(p.vertices).max()) for p in self.polygons]
-            + [abs(scenario.start.x), abs(scenario.start.y), abs(scenario.goal.x), abs(scenario.goal.y)]
+        extent = (
+            self.L
+            + r.rear_overhang
+            + r.front_overhang
+            + max(
+                [abs(v) for v in (self.bounds or ())]
+                + [float(np.abs(p.vertices).max()) for p in self.polygons]
+                + [abs(scenario.start.x), abs(scenario.start.y), abs(scenario.goal.x), abs(scenario.goal.y)]
+            )
         )
         self.margin = m = 1e-3 * extent  # >= 1e6 x TOUCH_RTOL (1e-9) x the scene size
         self._boxes = [
@@ -213,10 +223,11 @@ class SegmentValidity:
 
     def __call__(self, x: float, y: float, theta: float) -> bool:
         self.calls += 1
-        L = self.L
-        bx, by = x + L * math.cos(theta), y + L * math.sin(theta)
-        lox, hix = (x, bx) if x <= bx else (bx, x)
-        loy, hiy = (y, by) if y <= by else (by, y)
+        L, body = self.L, self.body
+        ax, ay, dx, dy, _ = axis_segment(x, y, theta, L, body["rear"], body["front"])
+        bx, by = ax + dx, ay + dy
+        lox, hix = (ax, bx) if ax <= bx else (bx, ax)
+        loy, hiy = (ay, by) if ay <= by else (by, ay)
         pose = (x, y, theta)
         if self.bounds is not None:
             ix0, iy0, ix1, iy1 = self._inner
@@ -224,12 +235,12 @@ class SegmentValidity:
                 ox0, oy0, ox1, oy1 = self._outer
                 if not (ox0 < lox and hix < ox1 and oy0 < loy and hiy < oy1):
                     return False
-                if not pose_in_bounds(pose, L, self.bounds):
+                if not pose_in_bounds(pose, L, self.bounds, **body):
                     return False
         for px0, py0, px1, py1, poly in self._boxes:
             if hix < px0 or lox > px1 or hiy < py0 or loy > py1:
                 continue
-            if pose_collides(pose, L, poly, check=False):
+            if pose_collides(pose, L, poly, check=False, **body):
                 return False
         return True
 

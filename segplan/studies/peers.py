@@ -249,14 +249,21 @@ class StudyConfig:
 
 
 def shipped_scenarios() -> tuple[str, ...]:
-    """The study's floors: the shipped scenarios whose obstacles are all convex, as in the paper.
+    """The study's floors: the shipped scenarios whose obstacles are all convex and whose robot
+    is the segment A->B widened by half_width, as in the paper.
 
     A floor with a non-convex obstacle (``l_shaped_rack``, split into convex pieces by
-    :mod:`segplan.floor.decompose`, beyond the paper) is not part of the comparison with the
-    peers, whose stored runs (``benchmarks/results/peers_ompl.csv``) cover exactly these.
+    :mod:`segplan.floor.decompose`, beyond the paper) or a robot with a body beyond the
+    segment (``forklift_aisle``: overhangs, a rectangle) is not part of the comparison with
+    the peers, whose stored runs (``benchmarks/results/peers_ompl.csv``) cover exactly these.
     """
-    names = world.shipped_scenarios()
-    return tuple(n for n in names if len((sc := load_scenario(n)).outlines) == len(sc.obstacles))
+    out = []
+    for name in world.shipped_scenarios():
+        sc = load_scenario(name)
+        r = sc.robot
+        if len(sc.outlines) == len(sc.obstacles) and r.axis == (0.0, r.L) and not r.rectangle:
+            out.append(name)
+    return tuple(out)
 
 
 def full_config() -> StudyConfig:

@@ -36,6 +36,7 @@ __all__ = [
     "REAR_LABEL",
     "REAR_STYLE",
     "ROBOT_STYLE",
+    "has_body",
     "legend_beside",
     "plot_body",
     "plan_figure",
@@ -149,14 +150,30 @@ def plot_body(
     ValueError
         Malformed ``pose``, or ``robot`` not a :class:`segplan.Robot`.
     """
-    if not isinstance(robot, Robot):
-        raise ValueError(f"robot must be a segplan.Robot, got {type(robot).__name__}")
+    _check_robot(robot)
     p = as_pose(pose, "pose")
     ax = _axes(ax)
-    c, s = math.cos(p.theta), math.sin(p.theta)
-    outline = robot.footprint() @ np.array([[c, s], [-s, c]]) + (p.x, p.y)
-    ax.add_patch(PolygonPatch(outline, closed=True, facecolor=color, edgecolor=color, alpha=alpha))
+    _add_body(ax, robot, p.x, p.y, p.theta, facecolor=color, edgecolor=color, alpha=alpha)
     return plot_pose(p, robot.L, ax, color=color, label=label)
+
+
+def _check_robot(robot) -> Robot:
+    if not isinstance(robot, Robot):
+        raise ValueError(f"robot must be a segplan.Robot, got {type(robot).__name__}")
+    return robot
+
+
+def has_body(robot: Robot | None) -> bool:
+    """Has ``robot`` a body beyond the paper's (overhangs or a rectangle)? Drawings show such a
+    body (:func:`plot_body`); the paper's robot keeps its segments."""
+    return robot is not None and (robot.axis != (0.0, robot.L) or robot.rectangle)
+
+
+def _add_body(ax: Axes, robot: Robot, x: float, y: float, theta: float, **style) -> None:
+    """The footprint (:meth:`segplan.Robot.footprint`) placed at the pose, as a patch."""
+    c, s = math.cos(theta), math.sin(theta)
+    outline = robot.footprint() @ np.array([[c, s], [-s, c]]) + (x, y)
+    ax.add_patch(PolygonPatch(outline, closed=True, **style))
 
 
 def plot_union(
@@ -171,6 +188,7 @@ def plot_union(
     color: str | None = None,
     label: str | None = None,
     legend: bool = True,
+    robot: Robot | None = None,
 ) -> Axes:
     """Draw a union: the rear path (A, solid), the front-wheel path (B, dashed) and the robot.
 
@@ -197,14 +215,21 @@ def plot_union(
         :data:`FRONT_LABEL`.
     legend : bool
         Give the paths legend labels (``False`` keeps them out of the legend).
+    robot : Robot, optional
+        The robot (its ``L`` the union's): with a body beyond the paper's (:func:`has_body`),
+        its footprint is drawn, unfilled, at every robot pose drawn (the ends included);
+        otherwise (None, the paper's robot) the segments alone.
 
     Raises
     ------
     ValueError
-        ``union`` is not a :class:`segplan.Union`, or bad ``n`` / ``robots``.
+        ``union`` is not a :class:`segplan.Union`, bad ``n`` / ``robots``, or ``robot`` not a
+        :class:`segplan.Robot`.
     """
     if not isinstance(union, Union):
         raise ValueError(f"union must be a segplan.Union, got {type(union).__name__}")
+    if robot is not None:
+        _check_robot(robot)
     n = _check_count(n, "n", 2)
     robots = _check_count(robots, "robots", 0)
     if robots == 1:
@@ -224,6 +249,9 @@ def plot_union(
         segs = np.stack((a, b), axis=1)  # (robots, 2 points, 2 coordinates)
         for s in segs[1:-1] if ends else segs:
             ax.plot(s[:, 0], s[:, 1], **ROBOT_STYLE)
+        if has_body(robot):
+            for (x, y), (bx, by) in segs:
+                _add_body(ax, robot, x, y, math.atan2(by - y, bx - x), fill=False, **ROBOT_STYLE)
     if ends:
         for p in (union.p0, union.p1):
             plot_pose(p, union.L, ax, color="0.15", linewidth=1.6)
@@ -239,6 +267,7 @@ def plot_plan(
     robots: int = 3,
     color: str = "C0",
     label: str | None = None,
+    robot: Robot | None = None,
 ) -> Axes:
     """Draw a plan, a sequence of unions joined at their nodes, over obstacles and bounds.
 
@@ -258,11 +287,13 @@ def plot_plan(
         Legend label of the plan's rear path, given once (the front-wheel path then stays out
         of the legend, as in :func:`plot_union`); without one both paths get a legend entry,
         :data:`REAR_LABEL` and :data:`FRONT_LABEL`.
+    robot : Robot, optional
+        With a body beyond the paper's, drawn at the robot poses (:func:`plot_union`).
 
     Raises
     ------
     ValueError
-        An item is not a Union, or the plan is empty.
+        An item is not a Union, the plan is empty, or ``robot`` is not a Robot.
     """
     unions = list(unions)
     if not unions:
@@ -276,7 +307,7 @@ def plot_plan(
     if obstacles is not None:
         plot_polygons(obstacles, ax)
     for i, u in enumerate(unions):
-        plot_union(u, ax, robots=robots, color=color, label=label, legend=i == 0)
+        plot_union(u, ax, robots=robots, color=color, label=label, legend=i == 0, robot=robot)
     return _plane(ax)
 
 
@@ -406,19 +437,20 @@ def plan_figure(
     """A figure of a floor and a plan on it, to save to a file (the command line's ``--out``).
 
     The floor (:func:`plot_floor`), the plan's unions if any (:func:`plot_plan`: the rear path
-    A, the dashed front-wheel path B, the robot at intervals), a scenario's start (green) and
-    goal (red) (with its body if it has a footprint beyond the paper's, :func:`plot_body`),
+    A, the dashed front-wheel path B, the robot at intervals, with its body if it has one
+    beyond the paper's, :func:`has_body`), a scenario's start (green) and goal (red) (with
+    that body, :func:`plot_body`),
     every one in the legend and the legend beside the floor (:func:`legend_beside`).
     Returns the :class:`matplotlib.figure.Figure`; the caller saves and closes it.
     """
     fig, ax = plt.subplots(figsize=figsize)
     plot_floor(floor, ax, poses=False)
     unions = list(unions)
+    r = floor.robot if isinstance(floor, Scenario) else None
     if unions:
-        plot_plan(unions, ax, robots=4)
-    if isinstance(floor, Scenario):
-        r = floor.robot
-        if r.front_overhang or r.rear_overhang or r.rectangle:  # a footprint beyond the paper's
+        plot_plan(unions, ax, robots=4, robot=r)
+    if r is not None:
+        if has_body(r):
             plot_body(floor.start, r, ax, color="tab:green", label="start")
             plot_body(floor.goal, r, ax, color="tab:red", label="goal")
         else:
