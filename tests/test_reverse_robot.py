@@ -41,3 +41,21 @@ def test_clearance_keeps_reverse():
     sc = load_scenario("fig5_example1")
     sc = dataclasses.replace(sc, robot=dataclasses.replace(sc.robot, reverse=True))
     assert with_clearance(sc, 0.05).robot.reverse is True
+
+
+def test_plan_takes_reverse():
+    """segplan.plan(..., reverse=True) plans the dead-end bay with a cusp; forward only it has no path."""
+    from pathlib import Path
+
+    import segplan
+
+    bay = segplan.load_scenario(
+        Path(__file__).resolve().parents[1] / "scenarios/beyond_the_paper/dead_end_bay.json"
+    )
+    args = (tuple(bay.start), tuple(bay.goal), [o.tolist() for o in bay.outlines], bay.L, bay.bounds)
+    kw = {"half_width": bay.robot.half_width, "max_steer": bay.robot.max_steer}
+    assert segplan.plan(*args, **kw, reverse=True).cusps
+    with pytest.raises(segplan.NoPathError):
+        segplan.plan(*args, **kw)
+    with pytest.raises(ValueError, match="reverse"):
+        segplan.plan(*args, **kw, reverse="yes")

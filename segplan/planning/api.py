@@ -66,9 +66,11 @@ def plan(
     front_overhang: float = 0.0,
     rear_overhang: float = 0.0,
     rectangle: bool = False,
+    reverse: bool = False,
     **options,
 ) -> Plan:
-    """Plan a forward-only path of the segment robot from ``start`` to ``goal``.
+    """Plan a path of the segment robot from ``start`` to ``goal`` (forward only, as the
+    paper's AGV, unless ``reverse``).
 
     Makes the scenario (:func:`segplan.make_scenario`) and plans on it with
     :func:`plan_scenario`: ``heuristic`` and the keyword ``options`` are that function's,
@@ -100,10 +102,13 @@ def plan(
     front_overhang, rear_overhang, rectangle
         The robot's body beyond the segment (beyond the paper, :class:`segplan.Robot`): its
         reach ahead of B and behind A (>= 0, m), and a rectangle instead of round ends.
+    reverse : bool
+        May the robot drive backwards (beyond the paper, :class:`segplan.Robot`; the default
+        planner only)? The plan's :attr:`Plan.directions` and :attr:`Plan.cusps` say where.
     heuristic, **options
         See :func:`plan_scenario`.
     """
-    robot = Robot(L, half_width, max_steer, front_overhang, rear_overhang, rectangle)
+    robot = Robot(L, half_width, max_steer, front_overhang, rear_overhang, rectangle, reverse)
     scenario = make_scenario(robot, start, goal, obstacles, bounds, source="plan()")
     return plan_scenario(scenario, heuristic=heuristic, **options)
 
