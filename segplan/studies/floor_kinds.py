@@ -230,7 +230,14 @@ def _facing(rng: np.random.Generator, free, face: fl.Face, robot: Robot, gap: fl
     def at(rho: float) -> Pose3:  # the front wheel rho out of the face
         return (px + (rho + L) * ux, py + (rho + L) * uy, phi + math.pi)
 
-    lo = 0.0  # B on the face: in the obstacle
+    return _off_face(free, at, L, gap)
+
+
+def _off_face(free, at: Callable[[float], Pose3], L: float, gap: float) -> Pose3 | None:
+    """``at(hi + gap)`` where ``hi`` is the first free place of ``at`` on the ray out of a face
+    (steps of L / 20 up to 4 L, then bisected to L / 100; ``at(0)`` touches the face), if that
+    pose is free; else None."""
+    lo = 0.0
     for i in range(1, 81):
         if free(at(0.05 * i * L)):
             hi = 0.05 * i * L
@@ -388,25 +395,32 @@ def _build_parking(rng: np.random.Generator) -> _Draw | None:
     if g is None:
         return None
     tight = rng.random() < TIGHT_SHARE
-    W, H = bounds[2], bounds[3]
-    aisle, ends = layout.lanes[0], layout.lanes[1:]
+    W = bounds[2]
     cars = [f for f in layout.faces if far[0] <= f.x0 <= far[1]]
 
     def draw_pair(notes):
         if tight:
             return _tight_start(rng, free, cars, ROBOT, notes, "a parked car across the aisle"), g
-        x = rng.uniform(*far)
-        in_end = x < ends[0].width or x > W - ends[1].width
-        spare = 0.5 * aisle.width - ROBOT.half_width - 0.1
-        y = rng.uniform(0.0, H) if in_end else aisle.y0 + rng.uniform(-0.5, 0.5) * spare
-        th = 0.5 * math.pi if in_end and rng.random() < 0.5 else 0.0
-        th += (math.pi if rng.random() < 0.5 else 0.0) + rng.uniform(-1.0, 1.0) * math.radians(20.0)
-        return _pose(x, y, th), g
+        return _across_lot(rng, lot, ROBOT), g
 
     got = _pairs(rng, free, draw_pair, lambda s, g: math.dist(s[:2], g[:2]) >= W / 3)
     if got is None:
         return None
     return _Draw(ROBOT, bounds, layout.obstacles, got[0], got[1], [*layout.notes, "goal nose-in", *got[2]])
+
+
+def _across_lot(rng: np.random.Generator, lot: fl.Lot, robot: Robot) -> Pose3:
+    """A start across a lot from its free bay: in the third of the lot farthest from the bay,
+    on the drive aisle or in an end zone, heading along it within 20 degrees, either way."""
+    layout, (_, _, W, H), far = lot.layout, lot.bounds, lot.far
+    aisle, ends = layout.lanes[0], layout.lanes[1:]
+    x = rng.uniform(*far)
+    in_end = x < ends[0].width or x > W - ends[1].width
+    spare = 0.5 * aisle.width - robot.half_width - 0.1
+    y = rng.uniform(0.0, H) if in_end else aisle.y0 + rng.uniform(-0.5, 0.5) * spare
+    th = 0.5 * math.pi if in_end and rng.random() < 0.5 else 0.0
+    th += (math.pi if rng.random() < 0.5 else 0.0) + rng.uniform(-1.0, 1.0) * math.radians(20.0)
+    return _pose(x, y, th)
 
 
 def _build_clutter(rng: np.random.Generator, robot: Robot = ROBOT, scale: float = 1.0) -> _Draw | None:

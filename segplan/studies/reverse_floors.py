@@ -53,7 +53,7 @@ import numpy as np
 
 from ..floor.scenario import Robot, Scenario, make_scenario
 from . import floor_layouts as fl
-from .floor_kinds import _Draw, _facing, _free_test, _pairs, _pose
+from .floor_kinds import _across_lot, _Draw, _facing, _free_test, _off_face, _pairs, _pose
 from .floors import ROBOT, _check_index
 
 __all__ = [
@@ -103,36 +103,10 @@ def _backed(rng: np.random.Generator, free, face: fl.Face, robot: Robot, gap: fl
     phi = face.phi
     ux, uy, L = math.cos(phi), math.sin(phi), robot.L
 
-    def at(rho: float):
+    def at(rho: float):  # the rear point A rho out of the face, heading out
         return (px + rho * ux, py + rho * uy, phi)
 
-    lo = 0.0
-    for i in range(1, 81):
-        if free(at(0.05 * i * L)):
-            hi = 0.05 * i * L
-            break
-        lo = 0.05 * i * L
-    else:
-        return None
-    while hi - lo > 0.01 * L:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if free(at(mid)) else (mid, hi)
-    pose = _pose(*at(hi + gap))
-    return pose if free(pose) else None
-
-
-def _across_lot(rng: np.random.Generator, lot: fl.Lot, robot: Robot):
-    """The parking kind's start: in the third of the lot farthest from the free bay, on the
-    drive aisle or in an end zone, heading along it within 20 degrees, either way."""
-    layout, (_, _, W, H), far = lot.layout, lot.bounds, lot.far
-    aisle, ends = layout.lanes[0], layout.lanes[1:]
-    x = rng.uniform(*far)
-    in_end = x < ends[0].width or x > W - ends[1].width
-    spare = 0.5 * aisle.width - robot.half_width - 0.1
-    y = rng.uniform(0.0, H) if in_end else aisle.y0 + rng.uniform(-0.5, 0.5) * spare
-    th = 0.5 * math.pi if in_end and rng.random() < 0.5 else 0.0
-    th += (math.pi if rng.random() < 0.5 else 0.0) + rng.uniform(-1.0, 1.0) * math.radians(20.0)
-    return _pose(x, y, th)
+    return _off_face(free, at, L, gap)
 
 
 def _build_lot(rng: np.random.Generator, backwards: bool) -> _Draw | None:
