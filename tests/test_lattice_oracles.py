@@ -42,6 +42,7 @@ import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from ompl_distance import ompl_distance
 from test_lattice_parts import astar_of, plan_of
 
 from segplan import longd_exact
@@ -325,16 +326,7 @@ def test_broken_duplicate_detection_is_caught():
 
 # -- h': the Dubins bound ----------------------------------------------------------------------
 def _ompl_dubins(R):
-    ob = pytest.importorskip("ompl.base")
-    space = ob.DubinsStateSpace(R)
-    a, b = space.allocState(), space.allocState()
-
-    def distance(p, q):
-        a.setX(p[0]), a.setY(p[1]), a.setYaw(p[2])
-        b.setX(q[0]), b.setY(q[1]), b.setYaw(q[2])
-        return space.distance(a, b)
-
-    return distance
+    return ompl_distance("dubins", R)
 
 
 def _poses(seed, n):

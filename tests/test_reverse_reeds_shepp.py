@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from ompl_distance import ompl_distance
 
 from segplan.planning import reeds_shepp
 from segplan.planning.dubins import dubins_length_scalar
@@ -21,16 +22,7 @@ from segplan.planning.reeds_shepp import reeds_shepp_length
 
 
 def _ompl_reeds_shepp(R):
-    ob = pytest.importorskip("ompl.base")
-    space = ob.ReedsSheppStateSpace(R)
-    a, b = space.allocState(), space.allocState()
-
-    def distance(p, q):
-        a.setX(p[0]), a.setY(p[1]), a.setYaw(p[2])
-        b.setX(q[0]), b.setY(q[1]), b.setYaw(q[2])
-        return space.distance(a, b)
-
-    return distance
+    return ompl_distance("reedsshepp", R)
 
 
 def _poses(seed, n, spread=5.0):

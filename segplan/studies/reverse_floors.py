@@ -93,6 +93,11 @@ def _rng(*key: int) -> np.random.Generator:
     return np.random.default_rng([_ROOT_SEED, GENERATOR_VERSION, *key])
 
 
+def _check_kind(kind) -> None:
+    if kind not in REVERSE_KINDS:
+        raise ValueError(f"kind must be one of {REVERSE_KINDS}, got {kind!r}")
+
+
 def _backed(rng: np.random.Generator, free, face: fl.Face, robot: Robot, gap: float):
     """A pose backed against ``face``: heading out of it (``face.phi``), the back of its
     body (``A`` minus the half-width; the model's segment starts at ``A``) ``gap`` beyond
@@ -231,8 +236,7 @@ def reverse_floor(kind: str, index: int) -> Scenario:
     RuntimeError
         If :data:`LAYOUT_TRIES` layouts in a row had no free start and goal.
     """
-    if kind not in REVERSE_KINDS:
-        raise ValueError(f"kind must be one of {REVERSE_KINDS}, got {kind!r}")
+    _check_kind(kind)
     index = _check_index(index)
     rng = _rng(REVERSE_KINDS.index(kind), index)
     for _ in range(LAYOUT_TRIES):
@@ -254,6 +258,5 @@ def reverse_floor(kind: str, index: int) -> Scenario:
 
 def reverse_floors(kind: str, n: int = N_PER_KIND) -> list[Scenario]:
     """The first ``n`` floors of ``kind`` (:func:`reverse_floor`)."""
-    if kind not in REVERSE_KINDS:
-        raise ValueError(f"kind must be one of {REVERSE_KINDS}, got {kind!r}")
+    _check_kind(kind)
     return [reverse_floor(kind, i) for i in range(_check_index(n, "n"))]
