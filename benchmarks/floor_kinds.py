@@ -35,8 +35,6 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import sys
 import time
 from collections.abc import Sequence
@@ -56,17 +54,14 @@ RESULTS = Path(__file__).resolve().parent / "results"
 
 def _segplan_side(groups, options: dict, argv: list[str], csv: Path) -> pd.DataFrame:
     """segplan on every floor in this warm process; the rows written to ``csv`` with provenance."""
-    meta = ompl_runner.provenance(argv, None, None)
-    for key in ("fairness", "simplifier", "ompl", "jobs"):  # the OMPL side's own
-        meta.pop(key)
-    meta.update(
+    meta = rb.segplan_provenance(
+        argv,
         what="segplan's default planner on segplan.studies.floor_kinds (segplan.studies.kind_study)",
         generator="segplan.studies.floor_kinds",
         generator_version=fk.GENERATOR_VERSION,
         kinds=list(groups),
         floors_per_kind={k: len(v) for k, v in groups.items()},
         options=options,
-        measured_by="segplan.viz.metrics.measure_scenario_path (dense oracle), plan sampled every 1 cm",
     )
     meta["warm_up_seconds"] = rb.warm_up(options)
     say(f"segplan {rb.variant_label(options)}: one-time set-up {meta['warm_up_seconds']:.2f} s")
@@ -79,17 +74,7 @@ def _segplan_side(groups, options: dict, argv: list[str], csv: Path) -> pd.DataF
             bar.update()
 
         seg, _ = rb.run_segplan(floors, options, progress=tick)
-    share = seg["cpu_seconds"] / seg["seconds"]
-    meta.update(
-        finished=pd.Timestamp.now(tz="UTC").isoformat(timespec="seconds"),
-        wall_seconds=time.perf_counter() - t0,
-        load_average_after=list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
-        cpu_share={"min": float(share.min()), "median": float(share.median()), "max": float(share.max())},
-        note="Plan times are wall times in a warm process; a CPU share below 0.9 means a loaded machine.",
-    )
-    csv.parent.mkdir(parents=True, exist_ok=True)
-    seg.to_csv(csv, index=False)
-    csv.with_suffix(".json").write_text(json.dumps(meta, indent=1) + "\n", encoding="utf-8")
+    rb.store_segplan(seg, meta, csv, time.perf_counter() - t0)
     say(f"wrote {csv} and {csv.with_suffix('.json').name}")
     return seg
 

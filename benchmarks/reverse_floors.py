@@ -26,8 +26,6 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import sys
 import time
 from collections.abc import Sequence
@@ -93,31 +91,18 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _segplan_side(args, argv: list[str]) -> None:
     """segplan with reverse gear on the floors, stored with provenance; the summary printed and stored."""
-    meta = ompl_runner.provenance(argv, None, None)
-    for key in ("fairness", "simplifier", "ompl", "jobs"):  # the OMPL side's own
-        meta.pop(key)
-    meta.update(
+    meta = rb.segplan_provenance(
+        argv,
         what="segplan's default planner, the robot with reverse gear, on segplan.studies.reverse_floors",
         generator="segplan.studies.reverse_floors",
         generator_version=rf.GENERATOR_VERSION,
         kinds=list(args.kinds),
         floors_per_kind=args.n,
         options="the planner's defaults (reverse_factor, cusp_penalty, time_limit)",
-        measured_by="segplan.viz.metrics.measure_scenario_path (dense oracle), plan sampled every 1 cm",
     )
     t0 = time.perf_counter()
     seg = rs.run_segplan(args.kinds, args.n, None, progress=print)
-    share = seg["cpu_seconds"] / seg["seconds"]
-    meta.update(
-        finished=pd.Timestamp.now(tz="UTC").isoformat(timespec="seconds"),
-        wall_seconds=time.perf_counter() - t0,
-        load_average_after=list(os.getloadavg()),
-        cpu_share={"min": float(share.min()), "median": float(share.median()), "max": float(share.max())},
-        note="Plan times are wall times in a warm process; a CPU share below 0.9 means a loaded machine.",
-    )
-    csv = args.results / "reverse_segplan.csv"
-    seg.to_csv(csv, index=False)
-    csv.with_suffix(".json").write_text(json.dumps(meta, indent=1) + "\n", encoding="utf-8")
+    rb.store_segplan(seg, meta, args.results / "reverse_segplan.csv", time.perf_counter() - t0)
     ompl = {s: rb.read_ompl(ompl_csv(args.results, s)) for s in ompl_runner.SPACES}
     summ = rs.summary(rs.compare(seg, ompl["reedsshepp"], ompl["dubins"]))
     summ.to_csv(args.results / "reverse_summary.csv", index=False)

@@ -59,6 +59,8 @@ from .executor import FAIRNESS, FairnessRule, Journal, run_jobs
 from .verdicts import Target, meet, targets_table
 
 __all__ = [
+    "segplan_provenance",
+    "store_segplan",
     "BUDGETS",
     "MAX_EXPANSIONS",
     "OMPL_CSV_NAME",
@@ -573,6 +575,38 @@ def run_segplan(
                 f"(CPU {1e3 * row['cpu_seconds']:.1f} ms)"
             )
     return pd.DataFrame(rows, columns=list(SEGPLAN_COLUMNS)), plans
+
+
+def segplan_provenance(argv: Sequence[str], **about) -> dict:
+    """The provenance of a segplan side run in this process (when, where, the commit, the
+    command: :func:`segplan.studies.ompl_runner.provenance` without the OMPL side's own keys),
+    with ``about`` (what was run, on which floors) and how the plans were measured."""
+    meta = om.provenance(list(argv), None, None)
+    for key in ("fairness", "simplifier", "ompl", "jobs"):  # the OMPL side's own
+        meta.pop(key)
+    meta.update(about)
+    meta["measured_by"] = "segplan.viz.metrics.measure_scenario_path (dense oracle), plan sampled every 1 cm"
+    return meta
+
+
+def store_segplan(seg: pd.DataFrame, meta: dict, csv: str | Path, wall_seconds: float) -> Path:
+    """Write a segplan side's rows to ``csv`` and ``meta`` (:func:`segplan_provenance`),
+    completed with the end time, the wall time, the load after and the calls' CPU share, to
+    the JSON file beside it; returns that file."""
+    share = seg["cpu_seconds"] / seg["seconds"]
+    meta.update(
+        finished=pd.Timestamp.now(tz="UTC").isoformat(timespec="seconds"),
+        wall_seconds=wall_seconds,
+        load_average_after=list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+        cpu_share={"min": float(share.min()), "median": float(share.median()), "max": float(share.max())},
+        note="Plan times are wall times in a warm process; a CPU share below 0.9 means a loaded machine.",
+    )
+    csv = Path(csv)
+    csv.parent.mkdir(parents=True, exist_ok=True)
+    seg.to_csv(csv, index=False)
+    out = csv.with_suffix(".json")
+    out.write_text(json.dumps(meta, indent=1) + "\n", encoding="utf-8")
+    return out
 
 
 def slow_floors(table: pd.DataFrame, limit: float = SLOW_SECONDS) -> pd.DataFrame:
