@@ -261,7 +261,9 @@ def test_a_worker_past_its_limit_is_killed_and_its_run_recorded_as_overrun(monke
     monkeypatch.setattr(ompl_runner, "worker_limit", lambda budget: 1.0)
     row = ompl_runner.solve_ompl_isolated(peers.load("fig5_example1"), "BITstar", 5.0, 1)
     assert row["status"].startswith("overrun") and not row["solved"] and not row["valid"]
-    assert 1.0 <= row["seconds"] < 5.0 and 0.0 < row["cpu_seconds"] <= row["seconds"] + 0.1
+    # the worker's own CPU time: its threads may use more than one core (seen: 1.22 s in 1.01 s)
+    assert 1.0 <= row["seconds"] < 5.0
+    assert 0.0 < row["cpu_seconds"] <= (os.cpu_count() or 1) * row["seconds"] + 0.1
 
 
 def test_a_crashed_worker_is_recorded_not_raised(monkeypatch, tmp_path):
