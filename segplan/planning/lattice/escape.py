@@ -16,6 +16,18 @@ the pose). :func:`escape_pairs` orders the combinations of a start arc and a goa
 again (at its first resolution) between the inner poses of each in turn when its search runs
 out of states, and puts the arcs around the plan it finds (:func:`join_arcs`).
 :func:`improve_with_arcs` joins such arcs by one union where that beats a found plan.
+
+**A robot that may reverse** (issue 26; :mod:`segplan.planning.lattice.reverse`) also has
+the arcs driven backwards (:func:`reversed_arc`: the same unions, the other direction) and
+**hops** (:func:`hops`): single free unions, either way, to poses within a few ``L`` of the
+start or the goal with headings off the lattice's (every :data:`HOP_TURNS` from the end's
+heading, :data:`HOP_AHEAD` along it and :data:`HOP_ASIDE` across it). A robot nose-in in a
+bay barely wider than itself cannot tilt by the lattice's smallest heading step (26.6 deg)
+inside it, and no circle fits: every lattice state it reaches lies on the bay's axis
+(``benchmarks/reverse_floors.py``'s dead-end floors: 10 of 100 exhausted so). One
+union backwards that leaves the bay askew, then a search from there, gets it out. The pairs
+of a reversing robot are ordered by the arcs' search cost (LONGD, times ``reverse_factor``
+when driven backwards) plus the Reeds-Shepp length between the inner poses.
 """
 
 from __future__ import annotations
@@ -29,17 +41,23 @@ from ...model.union import Union
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
 from ..plan import Plan, link_ends, plain_directions, union_longd, unions_longd
+from ..reeds_shepp import reeds_shepp_length
 from ..schedule import SCHEDULE, Schedule
 
 __all__ = [
+    "HOP_AHEAD",
+    "HOP_ASIDE",
+    "HOP_TURNS",
     "RADIUS_FACTORS",
     "STEP",
     "TURNS",
     "Arc",
     "arc_pairs",
     "escape_pairs",
+    "hops",
     "improve_with_arcs",
     "join_arcs",
+    "reversed_arc",
     "tight_arcs",
 ]
 
@@ -49,12 +67,24 @@ STEP = math.radians(11.25)
 TURNS = tuple(math.radians(d) for d in (45.0, 90.0, 135.0, 180.0, 225.0, 270.0))
 #: Radii tried (times ``R``): the smallest whose union keeps the steering limit is used.
 RADIUS_FACTORS = (1.01, 1.03, 1.06, 1.1)
+#: A hop's other pose: distances along the end's heading (times ``L``), ...
+HOP_AHEAD = (0.5, 1.0, 1.5, 2.0, 2.5)
+#: ... offsets across it (times ``L``; positive to the left) ...
+HOP_ASIDE = (-0.6, -0.3, 0.0, 0.3, 0.6)
+#: ... and turns from it (radians). The grid (170 poses, the straight ones left out: the
+#: lattice has them) was set by hand on the dead-end floors' bays (about ``L`` wider than
+#: the robot; ``segplan.studies.reverse_floors``), not tuned: on dead-end-010 14 of its
+#: hops are free and 13 of those lead to a plan.
+HOP_TURNS = tuple(math.radians(d) for d in (-45.0, -30.0, -15.0, 0.0, 15.0, 30.0, 45.0))
 
 
 @dataclass(frozen=True)
 class Arc:
-    """A chain of unions along a circle: ``unions`` in driving order, from ``first`` to ``last``.
+    """A chain of unions along a circle (or one union, a hop): driven from ``first`` to ``last``.
 
+    ``unions`` as a plan stores its links (:attr:`segplan.Plan.directions`): in driving
+    order, each the forward union between its two nodes, from the far one to the near one
+    when the arc is driven backwards (``direction`` -1).
     ``inner`` is the pose the rest of the plan joins: ``last`` for an arc out of the start,
     ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1] (the first's
     times their number: the same to rounding).
@@ -65,6 +95,7 @@ class Arc:
     last: Pose
     cost: float
     into: bool
+    direction: int = 1
 
     @property
     def inner(self) -> Pose:
@@ -137,34 +168,107 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc
     return out
 
 
-def escape_pairs(starts: list[Arc], goals: list[Arc], start, goal, R: float) -> list[tuple]:
+def reversed_arc(arc: Arc) -> Arc:
+    """``arc`` driven backwards: an arc into a pose (driven forwards) becomes an arc out of
+    it driven backwards, and the other way round (the same unions, in the other order: a
+    reverse link is stored as the forward union from its far node to its near one)."""
+    return Arc(tuple(reversed(arc.unions)), arc.last, arc.first, arc.cost, not arc.into, -arc.direction)
+
+
+def hops(links: LinkModel, pose, L: float, into: bool, direction: int) -> list[Arc]:
+    """Single free unions within the steering limit out of ``pose`` (``into=False``) or into
+    it (``into=True``), driven forwards (``direction`` 1) or backwards (-1): one
+    :class:`Arc` per free one, its other pose on the grid :data:`HOP_AHEAD` x
+    :data:`HOP_ASIDE` x :data:`HOP_TURNS` in ``pose``'s frame (module docstring), ahead of
+    ``pose`` when the forward union runs from ``pose`` to it (out forwards, into backwards),
+    else behind. The straight hops (no offset, no turn) are left out."""
+    ws = links.ws
+    p = Pose(*pose)
+    ahead = (direction > 0) != into  # the forward union runs from p to the other pose
+    sign = 1.0 if ahead else -1.0
+    c, s = math.cos(p.theta), math.sin(p.theta)
+    out = []
+    for d in HOP_AHEAD:
+        for e in HOP_ASIDE:
+            for turn in HOP_TURNS:
+                if e == 0.0 and turn == 0.0:
+                    continue
+                along, across = sign * d * L, e * L
+                x, y = p.x + along * c - across * s, p.y + along * s + across * c
+                q = Pose(x, y, wrap_ieee(p.theta + turn))
+                if not ws.pose_free(q):
+                    continue
+                u = links.union(p, q) if ahead else links.union(q, p)
+                if u is None or not ws.curvature_ok(u) or not ws.union_free(u):
+                    continue
+                first, last = (q, p) if into else (p, q)
+                out.append(Arc((u,), first, last, union_longd(u), into, direction))
+    return out
+
+
+def escape_pairs(
+    starts: list[Arc], goals: list[Arc], start, goal, R: float, reverse_factor: float | None = None
+) -> list[tuple]:
     """``(estimate, start_arc or None, goal_arc or None)`` for every combination but the
     empty one, cheapest first by the estimate: the arcs' costs plus the Dubins length
-    (radius ``R``) between their inner poses."""
+    (radius ``R``) between their inner poses. For a robot that may reverse
+    (``reverse_factor`` given): an arc driven backwards costs ``reverse_factor`` times its
+    LONGD, and the Reeds-Shepp length replaces Dubins'."""
     pairs = []
+    bound = dubins_length_scalar if reverse_factor is None else reeds_shepp_length
+
+    def cost(arc: Arc | None) -> float:
+        if arc is None:
+            return 0.0
+        return arc.cost * reverse_factor if arc.direction < 0 else arc.cost
+
     for a in (None, *starts):
         for b in (None, *goals):
             if a is None and b is None:
                 continue
             p0 = a.inner if a else Pose(*start)
             p1 = b.inner if b else Pose(*goal)
-            est = (a.cost if a else 0.0) + (b.cost if b else 0.0) + dubins_length_scalar(*p0, *p1, R)
+            est = cost(a) + cost(b) + bound(*p0, *p1, R)
             pairs.append((est, len(pairs), a, b))
     pairs.sort(key=lambda t: t[:2])
     return [(est, a, b) for est, _, a, b in pairs]
 
 
-def arc_pairs(scenario, links: LinkModel, ends: str) -> list[tuple]:
+def arc_pairs(scenario, links: LinkModel, ends: str, reverse_factor: float = 1.0) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
-    ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first.
+    ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
+    that may reverse (``scenario.robot.reverse``) also the arcs driven backwards
+    (:func:`reversed_arc`) and the hops (:func:`hops`) both ways, ordered with
+    ``reverse_factor``.
 
     ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
     ``"both"`` after an exhausted lattice, ``"goal"`` after one whose goal looked enclosed.
     """
-    R = scenario.robot.min_turning_radius
+    robot = scenario.robot
+    R = robot.min_turning_radius
     starts = tight_arcs(links, scenario.start, R) if ends == "both" else []
     goals = tight_arcs(links, scenario.goal, R, into=True)
-    return escape_pairs(starts, goals, scenario.start, scenario.goal, R)
+    if not robot.reverse:
+        return escape_pairs(starts, goals, scenario.start, scenario.goal, R)
+    if ends == "both":
+        starts += [reversed_arc(a) for a in tight_arcs(links, scenario.start, R, into=True)]
+        starts += [h for d in (1, -1) for h in hops(links, scenario.start, robot.L, False, d)]
+    goals += [reversed_arc(a) for a in tight_arcs(links, scenario.goal, R)]
+    goals += [h for d in (1, -1) for h in hops(links, scenario.goal, robot.L, True, d)]
+    return _interleaved(escape_pairs(starts, goals, scenario.start, scenario.goal, R, reverse_factor))
+
+
+def _interleaved(pairs: list[tuple]) -> list[tuple]:
+    """``pairs`` taken in turn from three queues, each in its order: a start arc only, a goal
+    arc only, both. A reversing robot's hops make hundreds of pairs, and where the start is
+    the trap the cheapest estimates are all goal-side (dead-end-010: the first 16 were), so
+    one order by the estimate would try none that leaves the start."""
+    queues = [[p for p in pairs if (p[1] is None, p[2] is None) == k] for k in ((False, True), (True, False))]
+    queues.append([p for p in pairs if p[1] is not None and p[2] is not None])
+    out = []
+    for k in range(max(map(len, queues))):
+        out += [q[k] for q in queues if k < len(q)]
+    return out
 
 
 def improve_with_arcs(
@@ -209,11 +313,20 @@ def improve_with_arcs(
 
 
 def join_arcs(
-    scenario, a: Arc | None, middle, b: Arc | None, expanded: int, t0: float, template=None
+    scenario,
+    a: Arc | None,
+    middle,
+    b: Arc | None,
+    expanded: int,
+    t0: float,
+    template=None,
+    reverse_factor: float = 1.0,
 ) -> Plan:
     """The plan of arc ``a`` (or None), ``middle`` (a Plan, or a tuple of unions made in
-    the frame of ``template``'s plan), arc ``b`` (or None); ``kinds`` ``"arc"`` for the arcs'
-    nodes (the start stays ``"start"``, the goal ``"goal"``)."""
+    the frame of ``template``'s plan, driven forwards), arc ``b`` (or None); ``kinds``
+    ``"arc"`` for the arcs' nodes (the start stays ``"start"``, the goal ``"goal"``). Its
+    ``search_cost`` counts an arc driven backwards ``reverse_factor`` times its LONGD (a
+    change of direction where an arc meets ``middle`` is not charged)."""
     front = a.unions if a else ()
     back = b.unions if b else ()
     direct = isinstance(middle, tuple)
@@ -226,15 +339,17 @@ def join_arcs(
     unions = front + tuple(inner) + back
     ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
     cost = ends + unions_longd(inner)  # the arcs' LONGD is known
-    inner_directions = (1,) * len(inner) if direct else middle.link_directions  # the arcs: forwards
-    directions = plain_directions((1,) * len(front) + tuple(inner_directions) + (1,) * len(back))
+    weighted = sum(x.cost * (reverse_factor if x.direction < 0 else 1.0) for x in (a, b) if x)
+    inner_directions = (1,) * len(inner) if direct else middle.link_directions
+    outer = ((a.direction if a else 1,) * len(front), (b.direction if b else 1,) * len(back))
+    directions = plain_directions(outer[0] + tuple(inner_directions) + outer[1])
     return replace(
         template if direct else middle,
         directions=directions,
         nodes=link_ends(Pose(*scenario.start), unions, directions),
         unions=unions,
         cost=cost,
-        search_cost=cost if direct else middle.search_cost + ends,
+        search_cost=cost if direct else middle.search_cost + weighted,
         expanded=expanded,
         seconds=time.perf_counter() - t0,
         kinds=tuple(kinds),

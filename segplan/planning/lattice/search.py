@@ -29,7 +29,10 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
   between such arcs' ends.
 * **Reverse** (a robot that may reverse, issue 26: :mod:`~segplan.planning.lattice.reverse`):
   reverse links in the A*, its costs ``reverse_factor`` and ``cusp_penalty``; the shortcuts
-  work within each run of one direction, so the cusps stay where the search put them.
+  work within each run of one direction, so the cusps stay where the search put them. Its
+  escapes also drive the tight arcs backwards and add hops (single unions either way to
+  poses off the lattice's headings), probed with :data:`PROBE_EXPANSIONS` first, the
+  cheapest plan of them kept (:func:`_escape`).
 
 :func:`plan_lattice` returns a :class:`segplan.planning.plan.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines the plan
@@ -65,6 +68,7 @@ __all__ = [
     "GOAL_RADIUS",
     "LATTICE_MAX_EXPANSIONS",
     "REVERSE_FACTOR",
+    "PROBE_EXPANSIONS",
     "lattice_options",
     "lattice_search",
     "plan_lattice",
@@ -432,6 +436,12 @@ def _dead_end(proofs: list) -> str | None:
     )
 
 
+#: The expansions of a probing search between a reversing robot's escape pairs
+#: (:func:`_escape`). Set by hand from dead-end-010 (its one-cusp escapes took 37-160
+#: expansions, its three-cusp ones 400-1900; ``segplan.studies.reverse_floors``), not tuned.
+PROBE_EXPANSIONS = 256
+
+
 def _escape(
     scenario,
     links: LinkModel,
@@ -449,34 +459,66 @@ def _escape(
     :attr:`~segplan.planning.schedule.Schedule.max_escapes` of them, at the first
     resolution only, while the limits of the whole call allow (``max_expansions``, counted
     from ``exc.expanded``; ``deadline``). Returns the arcs around the first plan found;
-    re-raises ``exc`` (with the expansions and the time of every try added) if none."""
-    pairs = arc_pairs(scenario, links, exc.escapable)[: schedule.max_escapes]
+    re-raises ``exc`` (with the expansions and the time of every try added) if none.
+
+    A robot that may reverse has many more pairs (hops, arcs either way), and the cheapest
+    estimate often leads to a plan with extra cusps (dead-end-010: 20.9 m and 4 cusps
+    against 11-13 m with one from other hops, found in 37-160 expansions against 400-1900).
+    Its pairs are first *probed*: each search gets at most :data:`PROBE_EXPANSIONS`; then,
+    only if no probe found a plan, the pairs a probe cut short are searched in full. Its
+    tries go on after a plan is found, while a pair's estimate is below the best plan's search
+    cost, and the cheapest plan (search cost) is returned. A forward robot's escapes return
+    the first plan, as before.
+    """
+    rf = options["reverse_factor"]
+    pairs = arc_pairs(scenario, links, exc.escapable, rf)[: schedule.max_escapes]
     used = exc.expanded
     tries = 0
     cut = None  # the limit that stopped the tries, if one did
-    for _, a, b in pairs:
-        left = deadline - time.perf_counter()
-        if used >= max_expansions or left <= 0:
-            cut = "expansions" if used >= max_expansions else "time"
+    best = None
+    pending = pairs
+    for cap in (PROBE_EXPANSIONS, None) if scenario.robot.reverse else (None,):
+        again = []  # the pairs a probe cut short
+        for est, a, b in pending:
+            if best is not None and not est < best.search_cost:
+                continue  # this pair cannot win
+            left = deadline - time.perf_counter()
+            if used >= max_expansions or left <= 0:
+                cut = "expansions" if used >= max_expansions else "time"
+                break
+            tries += 1
+            budget = max_expansions - used if cap is None else min(cap, max_expansions - used)
+            ends = {"start": a.inner if a else scenario.start, "goal": b.inner if b else scenario.goal}
+            sub = replace(scenario, **ends)
+            try:
+                inner, _ = _lattice_search(
+                    sub,
+                    max_expansions=budget,
+                    time_limit=left,
+                    t0=None,
+                    links=links,
+                    schedule=schedule,
+                    progress=progress,
+                    **{**options, "retry": False},
+                )
+            except NoPathError as e:
+                used += e.expanded
+                if cap is not None and e.reason == "expansions" and budget == cap:
+                    again.append((est, a, b))
+                    continue
+                cut = e.reason if e.reason in ("expansions", "time") else None
+                continue
+            used += inner.expanded
+            plan = join_arcs(scenario, a, inner, b, used, t0, reverse_factor=rf)
+            if not scenario.robot.reverse:
+                return plan
+            if best is None or plan.search_cost < best.search_cost:
+                best = plan
+        if best is not None or cut is not None:
             break
-        tries += 1
-        sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
-        try:
-            inner, _ = _lattice_search(
-                sub,
-                max_expansions=max_expansions - used,
-                time_limit=left,
-                t0=None,
-                links=links,
-                schedule=schedule,
-                progress=progress,
-                **{**options, "retry": False},
-            )
-        except NoPathError as e:
-            used += e.expanded
-            cut = e.reason if e.reason in ("expansions", "time") else None
-            continue
-        return join_arcs(scenario, a, inner, b, used + inner.expanded, t0)
+        pending = again
+    if best is not None:
+        return replace(best, expanded=used, seconds=time.perf_counter() - t0)
     exc.expanded = used
     exc.seconds = time.perf_counter() - t0
     tried = f"searches between tight arcs at the ends: {tries} of {len(pairs)} tried, none joined"

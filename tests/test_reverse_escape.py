@@ -1,0 +1,101 @@
+"""Escapes of a robot that may reverse (issue 26): tight arcs driven backwards, hops, and the
+dead-end bays whose lattice is exhausted inside the bay (:mod:`segplan.planning.lattice.escape`)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from test_lattice_oracles import dense_collides
+from test_reverse_lattice import _valid
+
+import segplan
+from segplan.floor.scenario import make_scenario
+from segplan.model.pose import Pose
+from segplan.planning.context import workspace_of
+from segplan.planning.lattice import escape
+from segplan.planning.links import LinkModel
+from segplan.planning.plan import link_ends, union_longd
+from segplan.studies import reverse_floors as rf
+from segplan.studies import reverse_study as rs
+
+
+def _bay(index: int = 10):
+    return rs.with_reverse(rf.reverse_floor("dead-end", index))
+
+
+def _nodes_of(arc: escape.Arc) -> tuple:
+    """The arc's nodes from ``first`` as a plan stores its links (:func:`link_ends`)."""
+    return link_ends(arc.first, arc.unions, (arc.direction,) * len(arc.unions))
+
+
+@pytest.mark.parametrize("into", [False, True])
+@pytest.mark.parametrize("direction", [1, -1])
+def test_hops_are_free_within_the_limit_and_join_their_end(into, direction):
+    sc = _bay()
+    links = LinkModel(workspace_of(sc))
+    end = sc.start if not into else sc.goal
+    found = escape.hops(links, end, sc.robot.L, into, direction)
+    if not into:  # nose-in at the bay's end: no room ahead of the start, some behind it
+        assert bool(found) == (direction == -1)
+    for arc in found:
+        (u,) = arc.unions
+        assert arc.direction == direction and arc.into == into
+        assert (arc.last if into else arc.first) == Pose(*end)
+        assert _nodes_of(arc)[-1] == arc.last  # the stored union joins first to last, driven so
+        assert arc.cost == pytest.approx(union_longd(u), rel=1e-12)
+        assert np.abs(u.curvature(u.xs(2001))).max() <= sc.robot.max_curvature * (1 + 1e-6)
+    if not found:
+        return
+    chain = type("Chain", (), {"unions": tuple(a.unions[0] for a in found)})
+    assert not dense_collides(chain, sc)  # the dense oracle agrees: every hop is free
+    # ahead of the end when the forward union starts there (out forwards, into backwards)
+    ahead = (direction > 0) != into
+    for arc in found:
+        p, q = Pose(*end), arc.inner
+        along = (q.x - p.x) * math.cos(p.theta) + (q.y - p.y) * math.sin(p.theta)
+        assert (along > 0) == ahead
+
+
+@pytest.mark.parametrize("into", [False, True])
+def test_reversed_arc_drives_the_same_unions_the_other_way(into):
+    robot = segplan.Robot(1.5, 0.45, math.radians(45), reverse=True)
+    sc = make_scenario(robot, (5.0, 6.0, 0.3), (15.0, 6.0, -2.0), [], (0.0, 0.0, 20.0, 12.0))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    end = sc.goal if into else sc.start
+    arcs = escape.tight_arcs(links, end, R, into=into)
+    assert arcs
+    for arc in arcs:
+        back = escape.reversed_arc(arc)
+        assert back.direction == -1 and back.into == (not into)
+        assert set(back.unions) == set(arc.unions) and back.cost == arc.cost
+        nodes = _nodes_of(back)
+        assert nodes[0] == back.first and nodes[-1] == back.last
+        assert (back.first if back.into else back.last) == back.inner
+        # the end pose stays where it was: out of it backwards, or into it backwards
+        assert (back.last if back.into else back.first) == Pose(*end)
+
+
+def test_a_forward_robot_has_no_hop_or_reversed_arc_among_its_pairs():
+    sc = _bay()
+    forward = dataclasses.replace(sc, robot=dataclasses.replace(sc.robot, reverse=False))
+    links = LinkModel(workspace_of(forward))
+    pairs = escape.arc_pairs(forward, links, "both")
+    arcs = [arc for _, a, b in pairs for arc in (a, b) if arc is not None]
+    assert arcs and all(arc.direction == 1 and len(arc.unions) > 1 for arc in arcs)
+    assert [p[0] for p in pairs] == sorted(p[0] for p in pairs)  # one order, by the estimate
+
+
+@pytest.mark.parametrize("index", [10, 37, 64])
+def test_dead_end_bays_too_narrow_to_tilt_in_are_left_by_a_hop(index):
+    """Floors whose lattice is exhausted inside the bay (every state it reaches lies on the
+    bay's axis): a hop backwards out of it, then a search, gives a valid plan."""
+    sc = _bay(index)
+    with pytest.raises(segplan.NoPathError, match="every lattice state reachable"):
+        segplan.plan_scenario(sc, lattice={"escapes": False})
+    plan = segplan.plan_scenario(sc)
+    _valid(plan, sc)
+    assert "arc" in plan.kinds and -1 in plan.link_directions
