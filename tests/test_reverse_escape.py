@@ -28,7 +28,7 @@ def _bay(index: int = 10):
 
 def _nodes_of(arc: escape.Arc) -> tuple:
     """The arc's nodes from ``first`` as a plan stores its links (:func:`link_ends`)."""
-    return link_ends(arc.first, arc.unions, (arc.direction,) * len(arc.unions))
+    return link_ends(arc.first, arc.unions, arc.link_directions)
 
 
 @pytest.mark.parametrize("into", [False, True])
@@ -37,12 +37,13 @@ def test_hops_are_free_within_the_limit_and_join_their_end(into, direction):
     sc = _bay()
     links = LinkModel(workspace_of(sc))
     end = sc.start if not into else sc.goal
-    found = escape.hops(links, end, sc.robot.L, into, direction)
+    found = escape.hops(links, end, sc.robot.L, into, direction, 1.25)
     if not into:  # nose-in at the bay's end: no room ahead of the start, some behind it
         assert bool(found) == (direction == -1)
     for arc in found:
         (u,) = arc.unions
-        assert arc.direction == direction and arc.into == into
+        assert arc.link_directions == (direction,) and arc.into == into
+        assert arc.search_cost == pytest.approx(arc.cost * (1.0 if direction > 0 else 1.25))
         assert (arc.last if into else arc.first) == Pose(*end)
         assert _nodes_of(arc)[-1] == arc.last  # the stored union joins first to last, driven so
         assert arc.cost == pytest.approx(union_longd(u), rel=1e-12)
@@ -69,8 +70,9 @@ def test_reversed_arc_drives_the_same_unions_the_other_way(into):
     arcs = escape.tight_arcs(links, end, R, into=into)
     assert arcs
     for arc in arcs:
-        back = escape.reversed_arc(arc)
-        assert back.direction == -1 and back.into == (not into)
+        back = escape.reversed_arc(arc, 1.25, 0.75)
+        assert back.link_directions == (-1,) * len(arc.unions) and back.into == (not into)
+        assert back.search_cost == pytest.approx(1.25 * arc.cost, rel=1e-9)  # no cusp within
         assert set(back.unions) == set(arc.unions) and back.cost == arc.cost
         nodes = _nodes_of(back)
         assert nodes[0] == back.first and nodes[-1] == back.last
@@ -85,7 +87,8 @@ def test_a_forward_robot_has_no_hop_or_reversed_arc_among_its_pairs():
     links = LinkModel(workspace_of(forward))
     pairs = escape.arc_pairs(forward, links, "both")
     arcs = [arc for _, a, b in pairs for arc in (a, b) if arc is not None]
-    assert arcs and all(arc.direction == 1 and len(arc.unions) > 1 for arc in arcs)
+    assert arcs and all(arc.link_directions == (1,) * len(arc.unions) for arc in arcs)
+    assert all(len(arc.unions) > 1 for arc in arcs)  # tight arcs only: no hop
     assert [p[0] for p in pairs] == sorted(p[0] for p in pairs)  # one order, by the estimate
 
 
@@ -98,4 +101,38 @@ def test_dead_end_bays_too_narrow_to_tilt_in_are_left_by_a_hop(index):
         segplan.plan_scenario(sc, lattice={"escapes": False})
     plan = segplan.plan_scenario(sc)
     _valid(plan, sc)
-    assert "arc" in plan.kinds and -1 in plan.link_directions
+    assert -1 in plan.link_directions
+
+
+@pytest.mark.parametrize("index", [8, 11])
+def test_k_turns_in_a_corridor_narrower_than_two_turning_radii(index):
+    """The k-turn floors the lattice could not turn around in (it searched for 10 s): a
+    turn-around out of the start (forward and backward legs along tight circles, each
+    turning the same way) then a search; valid, with cusps."""
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", index))
+    plan = segplan.plan_scenario(sc)
+    _valid(plan, sc)
+    assert len(plan.cusps) >= 2
+
+
+def test_turn_arounds_turn_one_way_to_the_target_and_join_their_legs():
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", 8))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    start = Pose(*sc.start)
+    arcs = escape.turn_arounds(links, start, sc.goal[2], R, 1.25, 0.75)
+    assert arcs
+    for arc in arcs:
+        nodes = _nodes_of(arc)
+        assert nodes[0] == start and nodes[-1] == arc.last == arc.inner
+        assert abs(math.remainder(arc.last.theta - sc.goal[2], 2 * math.pi)) < 0.5 * escape.STEP
+        turns = np.diff(np.unwrap([n.theta for n in nodes]))
+        assert (np.sign(turns) == np.sign(turns[0])).all()  # every leg turns the same way
+        d = arc.link_directions
+        cusps = sum(a != b for a, b in zip(d[:-1], d[1:], strict=True))
+        assert cusps >= 1
+        back = sum(union_longd(u) for u, x in zip(arc.unions, d, strict=True) if x < 0)
+        assert arc.search_cost == pytest.approx(arc.cost + 0.25 * back + 0.75 * cusps, rel=1e-9)
+        chain = type("Chain", (), {"unions": arc.unions})
+        assert not dense_collides(chain, sc)
+    assert escape.turn_arounds(links, start, start.theta, R) == []  # already there

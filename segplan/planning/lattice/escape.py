@@ -48,9 +48,11 @@ __all__ = [
     "HOP_AHEAD",
     "HOP_ASIDE",
     "HOP_TURNS",
+    "LEG_STEPS",
     "RADIUS_FACTORS",
     "STEP",
     "TURNS",
+    "TURN_LEGS",
     "Arc",
     "arc_pairs",
     "escape_pairs",
@@ -59,6 +61,7 @@ __all__ = [
     "join_arcs",
     "reversed_arc",
     "tight_arcs",
+    "turn_arounds",
 ]
 
 #: Turn of one union of an arc (radians).
@@ -84,10 +87,12 @@ class Arc:
 
     ``unions`` as a plan stores its links (:attr:`segplan.Plan.directions`): in driving
     order, each the forward union between its two nodes, from the far one to the near one
-    when the arc is driven backwards (``direction`` -1).
-    ``inner`` is the pose the rest of the plan joins: ``last`` for an arc out of the start,
-    ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1] (the first's
-    times their number: the same to rounding).
+    where it is driven backwards (``directions``, one per union, ``()`` when all are driven
+    forwards). ``inner`` is the pose the rest of the plan joins: ``last`` for an arc out of
+    the start, ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1] (the
+    first's times their number for an arc along one circle: the same to rounding);
+    ``search``: the search's cost of it (LONGD times ``reverse_factor`` where driven
+    backwards, plus ``cusp_penalty`` per change of direction; None: ``cost``).
     """
 
     unions: tuple
@@ -95,7 +100,17 @@ class Arc:
     last: Pose
     cost: float
     into: bool
-    direction: int = 1
+    directions: tuple = ()
+    search: float | None = None
+
+    @property
+    def link_directions(self) -> tuple:
+        """The direction of each union (1 forwards, -1 backwards)."""
+        return self.directions or (1,) * len(self.unions)
+
+    @property
+    def search_cost(self) -> float:
+        return self.cost if self.search is None else self.search
 
     @property
     def inner(self) -> Pose:
@@ -168,20 +183,36 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc
     return out
 
 
-def reversed_arc(arc: Arc) -> Arc:
-    """``arc`` driven backwards: an arc into a pose (driven forwards) becomes an arc out of
-    it driven backwards, and the other way round (the same unions, in the other order: a
-    reverse link is stored as the forward union from its far node to its near one)."""
-    return Arc(tuple(reversed(arc.unions)), arc.last, arc.first, arc.cost, not arc.into, -arc.direction)
+def _search_cost(unions, directions, cost: float, reverse_factor: float, cusp_penalty: float) -> float:
+    """The search's cost of links ``unions`` (LONGD [1] ``cost`` in all) driven ``directions``."""
+    if all(d > 0 for d in directions):
+        return cost
+    back = math.fsum(union_longd(u) for u, d in zip(unions, directions, strict=True) if d < 0)
+    cusps = sum(a != b for a, b in zip(directions[:-1], directions[1:], strict=True))
+    return cost + (reverse_factor - 1.0) * back + cusp_penalty * cusps
 
 
-def hops(links: LinkModel, pose, L: float, into: bool, direction: int) -> list[Arc]:
+def reversed_arc(arc: Arc, reverse_factor: float = 1.0, cusp_penalty: float = 0.0) -> Arc:
+    """``arc`` driven the other way: an arc into a pose becomes an arc out of it, and the
+    other way round, each union driven in the other direction (the same unions, in the other
+    order: a reverse link is stored as the forward union from its far node to its near one);
+    its search cost with ``reverse_factor`` and ``cusp_penalty`` (m)."""
+    unions = tuple(reversed(arc.unions))
+    directions = tuple(-d for d in reversed(arc.link_directions))
+    search = _search_cost(unions, directions, arc.cost, reverse_factor, cusp_penalty)
+    return Arc(unions, arc.last, arc.first, arc.cost, not arc.into, plain_directions(directions), search)
+
+
+def hops(
+    links: LinkModel, pose, L: float, into: bool, direction: int, reverse_factor: float = 1.0
+) -> list[Arc]:
     """Single free unions within the steering limit out of ``pose`` (``into=False``) or into
     it (``into=True``), driven forwards (``direction`` 1) or backwards (-1): one
     :class:`Arc` per free one, its other pose on the grid :data:`HOP_AHEAD` x
     :data:`HOP_ASIDE` x :data:`HOP_TURNS` in ``pose``'s frame (module docstring), ahead of
     ``pose`` when the forward union runs from ``pose`` to it (out forwards, into backwards),
-    else behind. The straight hops (no offset, no turn) are left out."""
+    else behind. The straight hops (no offset, no turn) are left out. A hop driven
+    backwards has the search cost ``reverse_factor`` times its LONGD."""
     ws = links.ws
     p = Pose(*pose)
     ahead = (direction > 0) != into  # the forward union runs from p to the other pose
@@ -202,25 +233,105 @@ def hops(links: LinkModel, pose, L: float, into: bool, direction: int) -> list[A
                 if u is None or not ws.curvature_ok(u) or not ws.union_free(u):
                     continue
                 first, last = (q, p) if into else (p, q)
-                out.append(Arc((u,), first, last, union_longd(u), into, direction))
+                cost = union_longd(u)
+                search = cost * reverse_factor if direction < 0 else cost
+                out.append(Arc((u,), first, last, cost, into, plain_directions((direction,)), search))
+    return out
+
+
+#: Legs of a turn-around at most (:func:`turn_arounds`).
+TURN_LEGS = 12
+#: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
+LEG_STEPS = 32
+
+
+def _leg(links: LinkModel, p: Pose, R: float, side: int, direction: int, stop) -> list[tuple]:
+    """``(union, pose)`` of the free unions along the tight circle (:data:`RADIUS_FACTORS`)
+    on ``side`` of ``p``, driven ``direction``, until one is not free or ``stop(pose)``;
+    each union stored as a plan stores its link (module docstring)."""
+    ws = links.ws
+    sign = 1.0 if direction > 0 else -1.0
+    rho = None
+    for f in RADIUS_FACTORS:
+        q = _circle_pose(p, f * R, side, sign * STEP)
+        u = links.union(p, q) if direction > 0 else links.union(q, p)
+        if u is not None and ws.curvature_ok(u):
+            rho = f * R
+            break
+    out: list = []
+    if rho is None:
+        return out
+    cur = p
+    for k in range(1, LEG_STEPS + 1):
+        q = _circle_pose(p, rho, side, sign * k * STEP)
+        u = links.union(cur, q) if direction > 0 else links.union(q, cur)
+        if u is None or not ws.union_free(u):
+            break
+        out.append((u, q))
+        cur = q
+        if stop(q):
+            break
+    return out
+
+
+def turn_arounds(
+    links: LinkModel, pose, target: float, R: float, reverse_factor: float = 1.0, cusp_penalty: float = 0.0
+) -> list[Arc]:
+    """Multi-point turns out of ``pose`` until its heading is within ``STEP / 2`` of
+    ``target`` (radians): legs along tight circles, forwards and backwards in turn, each
+    turning the same way (forwards on the left circle, backwards on the right one, or the
+    mirror image) as far as its unions stay free, at most :data:`TURN_LEGS` legs. A K-turn
+    (a three-point turn and its longer kin) in a corridor narrower than two turning radii,
+    which the lattice's coarse headings and longer primitives cannot make
+    (``segplan.studies.reverse_floors``' k-turn floors: 15 of 94 failed without it). One
+    :class:`Arc` (``into=False``, its search cost with ``reverse_factor`` and
+    ``cusp_penalty``, m) per turning sense and first direction that gets there; none where
+    the heading is already there."""
+    p = Pose(*pose)
+
+    def there(q: Pose) -> bool:
+        return abs(wrap_ieee(q.theta - target)) < 0.5 * STEP
+
+    if there(p):
+        return []
+    out = []
+    for turn in (1, -1):
+        for first in (1, -1):
+            unions: list = []
+            directions: list = []
+            cur, stuck = p, 0
+            for leg in range(TURN_LEGS):
+                d = first if leg % 2 == 0 else -first
+                side = turn if d > 0 else -turn  # both legs turn the heading the same way
+                got = _leg(links, cur, R, side, d, there)
+                stuck = stuck + 1 if not got else 0
+                if stuck == 2:
+                    break
+                for u, q in got:
+                    unions.append(u)
+                    directions.append(d)
+                    cur = q
+                if there(cur):
+                    cost = math.fsum(union_longd(u) for u in unions)
+                    search = _search_cost(unions, directions, cost, reverse_factor, cusp_penalty)
+                    arc = Arc(tuple(unions), p, cur, cost, False, plain_directions(directions), search)
+                    out.append(arc)
+                    break
     return out
 
 
 def escape_pairs(
-    starts: list[Arc], goals: list[Arc], start, goal, R: float, reverse_factor: float | None = None
+    starts: list[Arc], goals: list[Arc], start, goal, R: float, reverse: bool = False
 ) -> list[tuple]:
     """``(estimate, start_arc or None, goal_arc or None)`` for every combination but the
-    empty one, cheapest first by the estimate: the arcs' costs plus the Dubins length
-    (radius ``R``) between their inner poses. For a robot that may reverse
-    (``reverse_factor`` given): an arc driven backwards costs ``reverse_factor`` times its
-    LONGD, and the Reeds-Shepp length replaces Dubins'."""
+    empty one, cheapest first by the estimate: the arcs' search costs
+    (:attr:`Arc.search_cost`) plus the Dubins length (radius ``R``) between their inner
+    poses; for a robot that may reverse (``reverse`` true), the Reeds-Shepp length."""
     pairs = []
-    bound = dubins_length_scalar if reverse_factor is None else reeds_shepp_length
+    bound = reeds_shepp_length if reverse else dubins_length_scalar
 
     def cost(arc: Arc | None) -> float:
-        if arc is None:
-            return 0.0
-        return arc.cost * reverse_factor if arc.direction < 0 else arc.cost
+        return 0.0 if arc is None else arc.search_cost
 
     for a in (None, *starts):
         for b in (None, *goals):
@@ -234,12 +345,14 @@ def escape_pairs(
     return [(est, a, b) for est, _, a, b in pairs]
 
 
-def arc_pairs(scenario, links: LinkModel, ends: str, reverse_factor: float = 1.0) -> list[tuple]:
+def arc_pairs(
+    scenario, links: LinkModel, ends: str, reverse_factor: float = 1.0, cusp_penalty: float = 0.0
+) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
     that may reverse (``scenario.robot.reverse``) also the arcs driven backwards
-    (:func:`reversed_arc`) and the hops (:func:`hops`) both ways, ordered with
-    ``reverse_factor``.
+    (:func:`reversed_arc`), the hops (:func:`hops`) both ways and the turn-arounds
+    (:func:`turn_arounds`), ordered with ``reverse_factor`` and ``cusp_penalty`` (m).
 
     ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
     ``"both"`` after an exhausted lattice, ``"goal"`` after one whose goal looked enclosed.
@@ -250,21 +363,35 @@ def arc_pairs(scenario, links: LinkModel, ends: str, reverse_factor: float = 1.0
     goals = tight_arcs(links, scenario.goal, R, into=True)
     if not robot.reverse:
         return escape_pairs(starts, goals, scenario.start, scenario.goal, R)
+    rf, cp = reverse_factor, cusp_penalty
+    start, goal = Pose(*scenario.start), Pose(*scenario.goal)
     if ends == "both":
-        starts += [reversed_arc(a) for a in tight_arcs(links, scenario.start, R, into=True)]
-        starts += [h for d in (1, -1) for h in hops(links, scenario.start, robot.L, False, d)]
-    goals += [reversed_arc(a) for a in tight_arcs(links, scenario.goal, R)]
-    goals += [h for d in (1, -1) for h in hops(links, scenario.goal, robot.L, True, d)]
-    return _interleaved(escape_pairs(starts, goals, scenario.start, scenario.goal, R, reverse_factor))
+        starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
+        starts += [h for d in (1, -1) for h in hops(links, start, robot.L, False, d, rf)]
+        starts += turn_arounds(links, start, goal.theta, R, rf, cp)
+    goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
+    goals += [h for d in (1, -1) for h in hops(links, goal, robot.L, True, d, rf)]
+    goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp)]
+    return _interleaved(escape_pairs(starts, goals, start, goal, R, True))
 
 
 def _interleaved(pairs: list[tuple]) -> list[tuple]:
-    """``pairs`` taken in turn from three queues, each in its order: a start arc only, a goal
-    arc only, both. A reversing robot's hops make hundreds of pairs, and where the start is
-    the trap the cheapest estimates are all goal-side (dead-end-010: the first 16 were), so
-    one order by the estimate would try none that leaves the start."""
-    queues = [[p for p in pairs if (p[1] is None, p[2] is None) == k] for k in ((False, True), (True, False))]
-    queues.append([p for p in pairs if p[1] is not None and p[2] is not None])
+    """``pairs`` taken in turn from four queues, each in its order: a turn-around
+    (:func:`turn_arounds`) at one end, a start arc only, a goal arc only, both. A reversing
+    robot's hops make hundreds of pairs, and where the start is the trap the cheapest
+    estimates are all goal-side (dead-end-010: the first 16 were), so one order by the
+    estimate would try none that leaves the start; a turn-around's many unions put it
+    after every hop (k-turn-008: 1291 pairs)."""
+
+    def turning(arc) -> bool:
+        return arc is not None and len(set(arc.link_directions)) > 1
+
+    turns = [p for p in pairs if (p[1] is None or p[2] is None) and (turning(p[1]) or turning(p[2]))]
+    taken = {id(p) for p in turns}
+    rest = [p for p in pairs if id(p) not in taken]
+    queues = [turns]
+    queues += [[p for p in rest if (p[1] is None, p[2] is None) == k] for k in ((False, True), (True, False))]
+    queues.append([p for p in rest if p[1] is not None and p[2] is not None])
     out = []
     for k in range(max(map(len, queues))):
         out += [q[k] for q in queues if k < len(q)]
@@ -320,13 +447,12 @@ def join_arcs(
     expanded: int,
     t0: float,
     template=None,
-    reverse_factor: float = 1.0,
 ) -> Plan:
     """The plan of arc ``a`` (or None), ``middle`` (a Plan, or a tuple of unions made in
     the frame of ``template``'s plan, driven forwards), arc ``b`` (or None); ``kinds``
     ``"arc"`` for the arcs' nodes (the start stays ``"start"``, the goal ``"goal"``). Its
-    ``search_cost`` counts an arc driven backwards ``reverse_factor`` times its LONGD (a
-    change of direction where an arc meets ``middle`` is not charged)."""
+    ``search_cost`` adds the arcs' :attr:`Arc.search_cost` (a change of direction where an
+    arc meets ``middle`` is not charged)."""
     front = a.unions if a else ()
     back = b.unions if b else ()
     direct = isinstance(middle, tuple)
@@ -339,9 +465,9 @@ def join_arcs(
     unions = front + tuple(inner) + back
     ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
     cost = ends + unions_longd(inner)  # the arcs' LONGD is known
-    weighted = sum(x.cost * (reverse_factor if x.direction < 0 else 1.0) for x in (a, b) if x)
+    weighted = sum(x.search_cost for x in (a, b) if x)
     inner_directions = (1,) * len(inner) if direct else middle.link_directions
-    outer = ((a.direction if a else 1,) * len(front), (b.direction if b else 1,) * len(back))
+    outer = (a.link_directions if a else (), b.link_directions if b else ())
     directions = plain_directions(outer[0] + tuple(inner_directions) + outer[1])
     return replace(
         template if direct else middle,

@@ -69,6 +69,7 @@ __all__ = [
     "LATTICE_MAX_EXPANSIONS",
     "REVERSE_FACTOR",
     "PROBE_EXPANSIONS",
+    "QUICK_EXPANSIONS",
     "lattice_options",
     "lattice_search",
     "plan_lattice",
@@ -466,23 +467,31 @@ def _escape(
     against 11-13 m with one from other hops, found in 37-160 expansions against 400-1900).
     Its pairs are first *probed*: each search gets at most :data:`PROBE_EXPANSIONS`; then,
     only if no probe found a plan, the pairs a probe cut short are searched in full. Its
-    tries go on after a plan is found, while a pair's estimate is below the best plan's search
-    cost, and the cheapest plan (search cost) is returned. A forward robot's escapes return
+    tries go on after a plan is found, for as long again as the first took to find (from the
+    start of the escapes: an anytime doubling; k-turn-008's turn-around joins at once, after
+    which its hops would have taken 0.3 s each), while a pair's estimate is below the best
+    plan's search cost, and the cheapest plan (search cost) is returned. A forward robot's escapes return
     the first plan, as before.
     """
     rf = options["reverse_factor"]
-    pairs = arc_pairs(scenario, links, exc.escapable, rf)[: schedule.max_escapes]
+    cp = options["cusp_penalty"] * scenario.robot.L
+    pairs = arc_pairs(scenario, links, exc.escapable, rf, cp)[: schedule.max_escapes]
     used = exc.expanded
     tries = 0
     cut = None  # the limit that stopped the tries, if one did
     best = None
+    until = deadline  # after the first plan: as long again as it took to find (below)
+    began = time.perf_counter()
     pending = pairs
     for cap in (PROBE_EXPANSIONS, None) if scenario.robot.reverse else (None,):
         again = []  # the pairs a probe cut short
         for est, a, b in pending:
             if best is not None and not est < best.search_cost:
                 continue  # this pair cannot win
-            left = deadline - time.perf_counter()
+            now = time.perf_counter()
+            if best is not None and now > until:
+                break
+            left = deadline - now
             if used >= max_expansions or left <= 0:
                 cut = "expansions" if used >= max_expansions else "time"
                 break
@@ -509,9 +518,12 @@ def _escape(
                 cut = e.reason if e.reason in ("expansions", "time") else None
                 continue
             used += inner.expanded
-            plan = join_arcs(scenario, a, inner, b, used, t0, reverse_factor=rf)
+            plan = join_arcs(scenario, a, inner, b, used, t0)
             if not scenario.robot.reverse:
                 return plan
+            if best is None:
+                now = time.perf_counter()
+                until = min(deadline, now + (now - began))
             if best is None or plan.search_cost < best.search_cost:
                 best = plan
         if best is not None or cut is not None:
@@ -528,6 +540,35 @@ def _escape(
         exc.reason = cut
     exc.args = (f"{exc.head}; {tried}; expanded {used} states",)
     raise exc
+
+
+#: The expansions of a reversing robot's first, quick lattice search (:func:`_quick_then_escape`).
+#: Set by hand: the reverse study's bay-out, reverse-park and dead-end floors are planned in
+#: about 0.1 s (median; ``benchmarks/reverse_floors.py``), a few thousand expansions, and its
+#: k-turns took 1-3 s or failed at the time limit; not tuned.
+QUICK_EXPANSIONS = 4000
+
+
+def _quick_then_escape(search, scenario, links, options, limit, deadline, t0, schedule, progress) -> Plan:
+    """A reversing robot's lattice search in stages: ``search(QUICK_EXPANSIONS)``; if that is
+    cut by the expansions, the escapes (:func:`_escape`: hops, arcs either way and
+    turn-arounds, :mod:`segplan.planning.lattice.escape`), whose multi-point turns the
+    lattice's primitives cannot make in a corridor narrower than two turning radii (it
+    searched such floors for seconds and failed on 15 of 94); if none joins, the search
+    again with the rest of ``limit``. A search that ends otherwise is the answer (a failure
+    raised as it was)."""
+    try:
+        return search(QUICK_EXPANSIONS)
+    except NoPathError as exc:
+        if exc.reason != "expansions":
+            raise
+        exc.escapable = "both"
+        try:
+            return _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress)
+        except NoPathError as again:
+            if again.reason == "time" or again.expanded >= limit:
+                raise
+            return search(limit - again.expanded)
 
 
 def lattice_search(
@@ -580,10 +621,13 @@ def lattice_search(
     )
     t0 = time.perf_counter() if t0 is None else t0
     links = LinkModel(workspace_of(scenario) if workspace is None else workspace)
-    try:
+    limit = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
+    deadline = t0 + float(time_limit)
+
+    def search(expansions):
         plan, _ = _lattice_search(
             scenario,
-            max_expansions=max_expansions,
+            max_expansions=expansions,
             time_limit=time_limit,
             t0=t0,
             links=links,
@@ -591,11 +635,18 @@ def lattice_search(
             progress=progress,
             **options,
         )
+        return plan
+
+    try:
+        if scenario.robot.reverse and escapes and limit > QUICK_EXPANSIONS:
+            args = (scenario, links, options, limit, deadline, t0, schedule, progress)
+            plan = _quick_then_escape(search, *args)
+        else:
+            plan = search(max_expansions)
     except NoPathError as exc:
         if not (escapes and getattr(exc, "escapable", "")):
             raise
-        limit = LATTICE_MAX_EXPANSIONS if max_expansions is None else max_expansions
-        plan = _escape(scenario, links, exc, options, limit, t0 + float(time_limit), t0, schedule, progress)
+        plan = _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress)
     if escapes:
         plan = improve_with_arcs(scenario, links, plan, t0, t0 + float(time_limit), schedule)
     return plan, links
