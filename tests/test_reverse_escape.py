@@ -16,6 +16,7 @@ from segplan.floor.scenario import make_scenario
 from segplan.model.pose import Pose
 from segplan.planning.context import workspace_of
 from segplan.planning.lattice import escape
+from segplan.planning.lattice.reverse import weighted_cost
 from segplan.planning.links import LinkModel
 from segplan.planning.plan import link_ends, union_longd
 from segplan.studies import reverse_floors as rf
@@ -104,11 +105,12 @@ def test_dead_end_bays_too_narrow_to_tilt_in_are_left_by_a_hop(index):
     assert -1 in plan.link_directions
 
 
-@pytest.mark.parametrize("index", [8, 11])
+@pytest.mark.parametrize("index", [8, 11, 37])
 def test_k_turns_in_a_corridor_narrower_than_two_turning_radii(index):
     """The k-turn floors the lattice could not turn around in (it searched for 10 s): a
     turn-around out of the start (forward and backward legs along tight circles, each
-    turning the same way) then a search; valid, with cusps."""
+    turning the same way; on k-turn-037, near the corridor's closed end, after a straight
+    move) then a search; valid, with cusps."""
     sc = rs.with_reverse(rf.reverse_floor("k-turn", index))
     plan = segplan.plan_scenario(sc)
     _valid(plan, sc)
@@ -127,6 +129,7 @@ def test_turn_arounds_turn_one_way_to_the_target_and_join_their_legs():
         assert nodes[0] == start and nodes[-1] == arc.last == arc.inner
         assert abs(math.remainder(arc.last.theta - sc.goal[2], 2 * math.pi)) < 0.5 * escape.STEP
         turns = np.diff(np.unwrap([n.theta for n in nodes]))
+        turns = turns[np.abs(turns) > 1e-9]  # a straight move may lead in
         assert (np.sign(turns) == np.sign(turns[0])).all()  # every leg turns the same way
         d = arc.link_directions
         cusps = sum(a != b for a, b in zip(d[:-1], d[1:], strict=True))
@@ -136,3 +139,28 @@ def test_turn_arounds_turn_one_way_to_the_target_and_join_their_legs():
         chain = type("Chain", (), {"unions": arc.unions})
         assert not dense_collides(chain, sc)
     assert escape.turn_arounds(links, start, start.theta, R) == []  # already there
+
+
+def test_a_turn_around_near_a_closed_end_starts_after_a_straight_move():
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", 37))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    start = Pose(*sc.start)
+    arcs = escape.turn_arounds(links, start, sc.goal[2], R)
+    assert arcs
+    for arc in arcs:
+        lead = arc.unions[0]
+        assert lead.p0.theta == lead.p1.theta == start.theta  # straight, along the heading
+        assert math.hypot(lead.p1.x - lead.p0.x, lead.p1.y - lead.p0.y) / R in escape.TURN_SHIFTS
+
+
+def test_reversing_plans_are_improved_by_turn_arounds_and_arcs():
+    """The improvement of a reversing robot's plan (tight arcs either way, turn-arounds, one
+    union between, compared by the search's cost) never makes the plan dearer and finds the
+    K-turn that the lattice's coarse headings miss (k-turn-064: 10.6 m from the lattice)."""
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", 64))
+    plain = segplan.plan_scenario(sc, lattice={"escapes": False}, refine=None)
+    plan = segplan.plan_scenario(sc, refine=None)
+    _valid(plan, sc)
+    w = weighted_cost(plan, 1.25, 0.5 * sc.robot.L)
+    assert w < weighted_cost(plain, 1.25, 0.5 * sc.robot.L) - 0.5

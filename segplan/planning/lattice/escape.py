@@ -43,8 +43,10 @@ from ..links import LinkModel
 from ..plan import Plan, link_ends, plain_directions, union_longd, unions_longd
 from ..reeds_shepp import reeds_shepp_length
 from ..schedule import SCHEDULE, Schedule
+from .reverse import weighted_cost
 
 __all__ = [
+    "BOTH_ENDS",
     "HOP_AHEAD",
     "HOP_ASIDE",
     "HOP_TURNS",
@@ -53,6 +55,7 @@ __all__ = [
     "STEP",
     "TURNS",
     "TURN_LEGS",
+    "TURN_SHIFTS",
     "Arc",
     "arc_pairs",
     "escape_pairs",
@@ -239,6 +242,11 @@ def hops(
     return out
 
 
+#: A reversing robot's escape pairs with arcs at both ends: those of this many cheapest arcs
+#: of each end (:func:`escape_pairs`). Set by hand; not tuned.
+BOTH_ENDS = 8
+#: Straight moves before a turn-around (times ``R``; :func:`turn_arounds`). Set by hand; not tuned.
+TURN_SHIFTS = (0.5, 1.0, 2.0, 3.0)
 #: Legs of a turn-around at most (:func:`turn_arounds`).
 TURN_LEGS = 12
 #: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
@@ -283,41 +291,65 @@ def turn_arounds(
     mirror image) as far as its unions stay free, at most :data:`TURN_LEGS` legs. A K-turn
     (a three-point turn and its longer kin) in a corridor narrower than two turning radii,
     which the lattice's coarse headings and longer primitives cannot make
-    (``segplan.studies.reverse_floors``' k-turn floors: 15 of 94 failed without it). One
+    (``segplan.studies.reverse_floors``' k-turn floors: 15 of 94 failed without it).
+
+    The turn starts at ``pose`` or, if it gets stuck there (a start near the corridor's
+    closed end: k-turn-037), after one straight union along the heading, forwards or
+    backwards by :data:`TURN_SHIFTS` times ``R`` (the nearest that works). One
     :class:`Arc` (``into=False``, its search cost with ``reverse_factor`` and
     ``cusp_penalty``, m) per turning sense and first direction that gets there; none where
     the heading is already there."""
     p = Pose(*pose)
+    ws = links.ws
 
     def there(q: Pose) -> bool:
         return abs(wrap_ieee(q.theta - target)) < 0.5 * STEP
 
     if there(p):
         return []
+    c, s = math.cos(p.theta), math.sin(p.theta)
+    ways = [((), (), p)]  # (unions, directions, pose) to start the legs from
+    for shift in TURN_SHIFTS:
+        for sign in (1, -1):
+            q = Pose(p.x + sign * shift * R * c, p.y + sign * shift * R * s, p.theta)
+            u = links.union(p, q) if sign > 0 else links.union(q, p)
+            if u is not None and ws.union_free(u):
+                ways.append(((u,), (sign,), q))
     out = []
     for turn in (1, -1):
         for first in (1, -1):
-            unions: list = []
-            directions: list = []
-            cur, stuck = p, 0
-            for leg in range(TURN_LEGS):
-                d = first if leg % 2 == 0 else -first
-                side = turn if d > 0 else -turn  # both legs turn the heading the same way
-                got = _leg(links, cur, R, side, d, there)
-                stuck = stuck + 1 if not got else 0
-                if stuck == 2:
-                    break
-                for u, q in got:
-                    unions.append(u)
-                    directions.append(d)
-                    cur = q
-                if there(cur):
-                    cost = math.fsum(union_longd(u) for u in unions)
-                    search = _search_cost(unions, directions, cost, reverse_factor, cusp_penalty)
-                    arc = Arc(tuple(unions), p, cur, cost, False, plain_directions(directions), search)
-                    out.append(arc)
-                    break
+            for lead, lead_dirs, p0 in ways:
+                arc = _turn(links, p0, R, turn, first, there)
+                if arc is None:
+                    continue
+                unions, directions = lead + arc[0], lead_dirs + arc[1]
+                cost = math.fsum(union_longd(u) for u in unions)
+                search = _search_cost(unions, directions, cost, reverse_factor, cusp_penalty)
+                out.append(Arc(unions, p, arc[2], cost, False, plain_directions(directions), search))
+                break  # the nearest start that works
     return out
+
+
+def _turn(links: LinkModel, p: Pose, R: float, turn: int, first: int, there) -> tuple | None:
+    """The legs of one turn-around from ``p`` (:func:`turn_arounds`): ``(unions, directions,
+    end)``, or None if it gets stuck or runs out of legs."""
+    unions: list = []
+    directions: list = []
+    cur, stuck = p, 0
+    for leg in range(TURN_LEGS):
+        d = first if leg % 2 == 0 else -first
+        side = turn if d > 0 else -turn  # both legs turn the heading the same way
+        got = _leg(links, cur, R, side, d, there)
+        stuck = stuck + 1 if not got else 0
+        if stuck == 2:
+            return None
+        for u, q in got:
+            unions.append(u)
+            directions.append(d)
+            cur = q
+        if there(cur):
+            return tuple(unions), tuple(directions), cur
+    return None
 
 
 def escape_pairs(
@@ -326,17 +358,26 @@ def escape_pairs(
     """``(estimate, start_arc or None, goal_arc or None)`` for every combination but the
     empty one, cheapest first by the estimate: the arcs' search costs
     (:attr:`Arc.search_cost`) plus the Dubins length (radius ``R``) between their inner
-    poses; for a robot that may reverse (``reverse`` true), the Reeds-Shepp length."""
+    poses; for a robot that may reverse (``reverse`` true), the Reeds-Shepp length, and of
+    the combinations of two arcs only those of the :data:`BOTH_ENDS` cheapest of each end
+    (by their estimate alone; its hops make hundreds of arcs per end, and the estimates of
+    all their combinations took 0.3 s on k-turn-003)."""
     pairs = []
     bound = reeds_shepp_length if reverse else dubins_length_scalar
 
     def cost(arc: Arc | None) -> float:
         return 0.0 if arc is None else arc.search_cost
 
-    for a in (None, *starts):
-        for b in (None, *goals):
+    if reverse:
+        s0, g0 = Pose(*start), Pose(*goal)
+        starts = sorted(starts, key=lambda a: cost(a) + bound(*a.inner, *g0, R))
+        goals = sorted(goals, key=lambda b: cost(b) + bound(*s0, *b.inner, R))
+    for i, a in enumerate((None, *starts)):
+        for k, b in enumerate((None, *goals)):
             if a is None and b is None:
                 continue
+            if reverse and i and k and max(i, k) > BOTH_ENDS:
+                continue  # (index 0 is None)
             p0 = a.inner if a else Pose(*start)
             p1 = b.inner if b else Pose(*goal)
             est = cost(a) + cost(b) + bound(*p0, *p1, R)
@@ -346,7 +387,13 @@ def escape_pairs(
 
 
 def arc_pairs(
-    scenario, links: LinkModel, ends: str, reverse_factor: float = 1.0, cusp_penalty: float = 0.0
+    scenario,
+    links: LinkModel,
+    ends: str,
+    reverse_factor: float = 1.0,
+    cusp_penalty: float = 0.0,
+    ordered: bool = False,
+    with_hops: bool = True,
 ) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
@@ -356,6 +403,8 @@ def arc_pairs(
 
     ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
     ``"both"`` after an exhausted lattice, ``"goal"`` after one whose goal looked enclosed.
+    A reversing robot's pairs are interleaved (:func:`_interleaved`) unless ``ordered``; its
+    hops are left out unless ``with_hops``.
     """
     robot = scenario.robot
     R = robot.min_turning_radius
@@ -367,12 +416,13 @@ def arc_pairs(
     start, goal = Pose(*scenario.start), Pose(*scenario.goal)
     if ends == "both":
         starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
-        starts += [h for d in (1, -1) for h in hops(links, start, robot.L, False, d, rf)]
+        starts += [h for d in (1, -1) if with_hops for h in hops(links, start, robot.L, False, d, rf)]
         starts += turn_arounds(links, start, goal.theta, R, rf, cp)
     goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
-    goals += [h for d in (1, -1) for h in hops(links, goal, robot.L, True, d, rf)]
+    goals += [h for d in (1, -1) if with_hops for h in hops(links, goal, robot.L, True, d, rf)]
     goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp)]
-    return _interleaved(escape_pairs(starts, goals, start, goal, R, True))
+    pairs = escape_pairs(starts, goals, start, goal, R, True)
+    return pairs if ordered else _interleaved(pairs)
 
 
 def _interleaved(pairs: list[tuple]) -> list[tuple]:
@@ -405,6 +455,8 @@ def improve_with_arcs(
     t0: float,
     deadline: float = math.inf,
     schedule: Schedule = SCHEDULE,
+    reverse_factor: float | None = None,
+    cusp_penalty: float = 0.0,
 ) -> Plan:
     """A cheaper plan through tight arcs at its ends, or ``plan`` itself.
 
@@ -416,7 +468,12 @@ def improve_with_arcs(
     ``plan.cost`` exceeds :attr:`Schedule.improve_gap` times the Dubins length of the ends (a
     search between the arcs, tried too, cost more time than it won length). No pair is tried
     once ``deadline`` (a :func:`time.perf_counter` value) has passed: the best plan so far.
+
+    A robot that may reverse (``scenario.robot.reverse``, ``reverse_factor`` given):
+    :func:`_improve_reversing`.
     """
+    if scenario.robot.reverse and reverse_factor is not None:
+        return _improve_reversing(scenario, links, plan, t0, deadline, schedule, reverse_factor, cusp_penalty)
     R = scenario.robot.min_turning_radius
     s, g = Pose(*scenario.start), Pose(*scenario.goal)
     if not plan.cost > schedule.improve_gap * dubins_length_scalar(*s, *g, R):
@@ -439,6 +496,51 @@ def improve_with_arcs(
     return best
 
 
+def _improve_reversing(
+    scenario,
+    links: LinkModel,
+    plan: Plan,
+    t0: float,
+    deadline: float,
+    schedule: Schedule,
+    rf: float,
+    cp: float,
+) -> Plan:
+    """:func:`improve_with_arcs` for a robot that may reverse: the arcs of :func:`arc_pairs`
+    (tight arcs either way, hops, turn-arounds) at both ends, joined by the paper's direct
+    union driven either way, plans compared by the search's cost
+    (:func:`segplan.planning.lattice.reverse.weighted_cost` with ``rf`` and ``cp``, m: the
+    default planner's comparison; the hops left out: they are for traps, and their hundreds
+    of pairs took seconds), tried when that cost exceeds :attr:`Schedule.improve_gap`
+    times the Reeds-Shepp length of the ends. The lattice's K-turns, whose primitives turn
+    at ``1.12 R`` with headings 26.6 deg apart, cost 1.10 times OMPL's in the median on the
+    reverse study's k-turn floors; a turn-around on tight circles and one union down the
+    corridor is often shorter."""
+    R = scenario.robot.min_turning_radius
+    s, g = Pose(*scenario.start), Pose(*scenario.goal)
+    best, best_w = plan, weighted_cost(plan, rf, cp)
+    if not best_w > schedule.improve_gap * reeds_shepp_length(*s, *g, R):
+        return plan
+    if time.perf_counter() > deadline:
+        return plan
+    ws = links.ws
+    for est, a, b in arc_pairs(scenario, links, "both", rf, cp, ordered=True, with_hops=False):
+        if est >= best_w:
+            break  # ordered by this estimate: no later pair can win
+        if time.perf_counter() > deadline:
+            break
+        p0, p1 = a.inner if a else s, b.inner if b else g
+        for d in (1, -1):
+            u = links.union(p0, p1) if d > 0 else links.union(p1, p0)
+            if u is None or not ws.union_free(u):
+                continue
+            cand = join_arcs(scenario, a, (u,), b, plan.expanded, t0, plan, middle_direction=d)
+            w = weighted_cost(cand, rf, cp)
+            if w < best_w:
+                best, best_w = cand, w
+    return best
+
+
 def join_arcs(
     scenario,
     a: Arc | None,
@@ -447,9 +549,10 @@ def join_arcs(
     expanded: int,
     t0: float,
     template=None,
+    middle_direction: int = 1,
 ) -> Plan:
     """The plan of arc ``a`` (or None), ``middle`` (a Plan, or a tuple of unions made in
-    the frame of ``template``'s plan, driven forwards), arc ``b`` (or None); ``kinds``
+    the frame of ``template``'s plan, driven ``middle_direction``), arc ``b`` (or None); ``kinds``
     ``"arc"`` for the arcs' nodes (the start stays ``"start"``, the goal ``"goal"``). Its
     ``search_cost`` adds the arcs' :attr:`Arc.search_cost` (a change of direction where an
     arc meets ``middle`` is not charged)."""
@@ -466,7 +569,7 @@ def join_arcs(
     ends = (a.cost if a else 0.0) + (b.cost if b else 0.0)
     cost = ends + unions_longd(inner)  # the arcs' LONGD is known
     weighted = sum(x.search_cost for x in (a, b) if x)
-    inner_directions = (1,) * len(inner) if direct else middle.link_directions
+    inner_directions = (middle_direction,) * len(inner) if direct else middle.link_directions
     outer = (a.link_directions if a else (), b.link_directions if b else ())
     directions = plain_directions(outer[0] + tuple(inner_directions) + outer[1])
     return replace(

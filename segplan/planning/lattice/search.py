@@ -546,7 +546,7 @@ def _escape(
 #: Set by hand: the reverse study's bay-out, reverse-park and dead-end floors are planned in
 #: about 0.1 s (median; ``benchmarks/reverse_floors.py``), a few thousand expansions, and its
 #: k-turns took 1-3 s or failed at the time limit; not tuned.
-QUICK_EXPANSIONS = 4000
+QUICK_EXPANSIONS = 1000
 
 
 def _quick_then_escape(search, scenario, links, options, limit, deadline, t0, schedule, progress) -> Plan:
@@ -648,5 +648,6 @@ def lattice_search(
             raise
         plan = _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress)
     if escapes:
-        plan = improve_with_arcs(scenario, links, plan, t0, t0 + float(time_limit), schedule)
+        rf, cp = options["reverse_factor"], options["cusp_penalty"] * scenario.robot.L
+        plan = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, rf, cp)
     return plan, links
