@@ -24,6 +24,10 @@ forward-only; the lattice reverses where it pays; plans are compared by the latt
 penalised) and the lower bound of ``near_lower_bound`` is the Reeds–Shepp length. The
 refinement refines each same-direction run of a plan on its own
 (:func:`segplan.planning.lattice.reverse.by_runs`): the cusps stay where the lattice put them.
+The lattice's improvement by tight arcs and turn-arounds
+(:func:`segplan.planning.lattice.escape.improve_with_arcs`) is a third plan refined with the
+others rather than a replacement of the lattice's (``alternatives`` of
+:func:`segplan.planning.lattice.search.lattice_search`).
 """
 
 from __future__ import annotations
@@ -78,7 +82,12 @@ def default_pipeline(ctx: PlanningContext, options: DefaultOptions) -> Plan:
     expansions = lattice_budget(ctx, options, paper)
     if expansions > 0:
         try:
-            found.append(lattice_stage(ctx, options.lattice, expansions))
+            if ctx.scenario.robot.reverse:  # the improved plan too, both refined (lattice_search)
+                more: list = []
+                found.append(lattice_stage(ctx, options.lattice, expansions, alternatives=more))
+                found += [(plan, found[-1][1]) for plan in more]
+            else:
+                found.append(lattice_stage(ctx, options.lattice, expansions))
         except NoPathError as exc:
             if paper is None:
                 raise _named_limits(exc, ctx, options) from None

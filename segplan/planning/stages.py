@@ -123,10 +123,11 @@ def paper_search(ctx: PlanningContext, options: PaperOptions, observer=None) -> 
 
 
 def lattice_stage(
-    ctx: PlanningContext, options: LatticeOptions, max_expansions: int
+    ctx: PlanningContext, options: LatticeOptions, max_expansions: int, alternatives: list | None = None
 ) -> tuple[Plan, LinkModel]:
     """The lattice search on the context's floor and workspace, within ``max_expansions``
-    and the context's deadline, with ``options``' schedule."""
+    and the context's deadline, with ``options``' schedule; ``alternatives`` as
+    :func:`segplan.planning.lattice.search.lattice_search`'s."""
     ctx.report("lattice", "start")
     watch = None if ctx.progress is None else (lambda n: ctx.report("lattice", "expanded", n))
     try:
@@ -138,6 +139,7 @@ def lattice_stage(
             workspace=ctx.workspace,
             schedule=options.schedule,
             progress=watch,
+            alternatives=alternatives,
             **options.search_options(),
         )
     except NoPathError as exc:
