@@ -467,10 +467,11 @@ def _escape(
     against 11-13 m with one from other hops, found in 37-160 expansions against 400-1900).
     Its pairs are first *probed*: each search gets at most :data:`PROBE_EXPANSIONS`; then,
     only if no probe found a plan, the pairs a probe cut short are searched in full. Its
-    tries go on after a plan is found, for as long again as the first took to find (from the
-    start of the escapes: an anytime doubling; k-turn-008's turn-around joins at once, after
-    which its hops would have taken 0.3 s each), while a pair's estimate is below the best
-    plan's search cost, and the cheapest plan (search cost) is returned. A forward robot's escapes return
+    tries go on after a plan is found, for as many expansions again as the escapes took to
+    find it (an anytime doubling, counted in expansions so that the answer is the same on
+    any machine; k-turn-008's turn-around joins at once, after which its hops would have
+    taken 0.3 s each), while a pair's estimate is below the best plan's search cost, and the
+    cheapest plan (search cost) is returned. A forward robot's escapes return
     the first plan, as before.
     """
     rf = options["reverse_factor"]
@@ -480,18 +481,16 @@ def _escape(
     tries = 0
     cut = None  # the limit that stopped the tries, if one did
     best = None
-    until = deadline  # after the first plan: as long again as it took to find (below)
-    began = time.perf_counter()
+    until = math.inf  # after the first plan: as many expansions again as it took (below)
     pending = pairs
     for cap in (PROBE_EXPANSIONS, None) if scenario.robot.reverse else (None,):
         again = []  # the pairs a probe cut short
         for est, a, b in pending:
             if best is not None and not est < best.search_cost:
                 continue  # this pair cannot win
-            now = time.perf_counter()
-            if best is not None and now > until:
+            if best is not None and used >= until:
                 break
-            left = deadline - now
+            left = deadline - time.perf_counter()
             if used >= max_expansions or left <= 0:
                 cut = "expansions" if used >= max_expansions else "time"
                 break
@@ -522,8 +521,7 @@ def _escape(
             if not scenario.robot.reverse:
                 return plan
             if best is None:
-                now = time.perf_counter()
-                until = min(deadline, now + (now - began))
+                until = used + (used - exc.expanded)
             if best is None or plan.search_cost < best.search_cost:
                 best = plan
         if best is not None or cut is not None:
