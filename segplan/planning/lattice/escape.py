@@ -186,11 +186,18 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc
     return out
 
 
-def _search_cost(unions, directions, cost: float, reverse_factor: float, cusp_penalty: float) -> float:
-    """The search's cost of links ``unions`` (LONGD [1] ``cost`` in all) driven ``directions``."""
+def _search_cost(
+    unions, directions, cost: float, reverse_factor: float, cusp_penalty: float, longds=None
+) -> float:
+    """The search's cost of links ``unions`` (LONGD [1] ``cost`` in all; ``longds``, each
+    link's, if known) driven ``directions``."""
     if all(d > 0 for d in directions):
         return cost
-    back = math.fsum(union_longd(u) for u, d in zip(unions, directions, strict=True) if d < 0)
+    if all(d < 0 for d in directions):
+        return reverse_factor * cost
+    if longds is None:
+        longds = [union_longd(u) for u in unions]
+    back = math.fsum(x for x, d in zip(longds, directions, strict=True) if d < 0)
     cusps = sum(a != b for a, b in zip(directions[:-1], directions[1:], strict=True))
     return cost + (reverse_factor - 1.0) * back + cusp_penalty * cusps
 
@@ -270,11 +277,19 @@ def _leg(links: LinkModel, p: Pose, R: float, side: int, direction: int, stop) -
     if rho is None:
         return out
     cur = p
+    u1 = None  # the first union: every later one is congruent (its frame, moved along)
     for k in range(1, LEG_STEPS + 1):
         q = _circle_pose(p, rho, side, sign * k * STEP)
-        u = links.union(cur, q) if direction > 0 else links.union(q, cur)
+        a, b = (cur, q) if direction > 0 else (q, cur)
+        geo = None if u1 is None else intrinsic_interval(a, b)
+        if geo is not None and geo[4] < u1.alpha < geo[5]:
+            d, psi, phi0, phi1, _, _ = geo
+            u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
+        else:
+            u = links.union(a, b)
         if u is None or not ws.union_free(u):
             break
+        u1 = u1 or u
         out.append((u, q))
         cur = q
         if stop(q):
@@ -308,23 +323,37 @@ def turn_arounds(
     if there(p):
         return []
     c, s = math.cos(p.theta), math.sin(p.theta)
-    ways = [((), (), p)]  # (unions, directions, pose) to start the legs from
-    for shift in TURN_SHIFTS:
-        for sign in (1, -1):
-            q = Pose(p.x + sign * shift * R * c, p.y + sign * shift * R * s, p.theta)
-            u = links.union(p, q) if sign > 0 else links.union(q, p)
-            if u is not None and ws.union_free(u):
-                ways.append(((u,), (sign,), q))
+
+    def ways():  # (unions, directions, pose) to start the legs from, the nearest first
+        yield (), (), p
+        for shift in TURN_SHIFTS:
+            for sign in (1, -1):
+                q = Pose(p.x + sign * shift * R * c, p.y + sign * shift * R * s, p.theta)
+                u = links.union(p, q) if sign > 0 else links.union(q, p)
+                if u is not None and ws.union_free(u):
+                    yield (u,), (sign,), q
+
+    starts: list = []  # the ways tried so far (made once)
     out = []
     for turn in (1, -1):
         for first in (1, -1):
-            for lead, lead_dirs, p0 in ways:
+            k = 0
+            more = ways() if not starts else None
+            while True:
+                if k == len(starts):
+                    way = next(more, None) if more is not None else None
+                    if way is None:
+                        break
+                    starts.append(way)
+                lead, lead_dirs, p0 = starts[k]
+                k += 1
                 arc = _turn(links, p0, R, turn, first, there)
                 if arc is None:
                     continue
                 unions, directions = lead + arc[0], lead_dirs + arc[1]
-                cost = math.fsum(union_longd(u) for u in unions)
-                search = _search_cost(unions, directions, cost, reverse_factor, cusp_penalty)
+                longds = [union_longd(u) for u in lead] + list(arc[3])
+                cost = math.fsum(longds)
+                search = _search_cost(unions, directions, cost, reverse_factor, cusp_penalty, longds)
                 out.append(Arc(unions, p, arc[2], cost, False, plain_directions(directions), search))
                 break  # the nearest start that works
     return out
@@ -332,9 +361,11 @@ def turn_arounds(
 
 def _turn(links: LinkModel, p: Pose, R: float, turn: int, first: int, there) -> tuple | None:
     """The legs of one turn-around from ``p`` (:func:`turn_arounds`): ``(unions, directions,
-    end)``, or None if it gets stuck or runs out of legs."""
+    end, longds)``, or None if it gets stuck or runs out of legs. The unions of a leg are
+    congruent: each leg's first LONGD [1] stands for the others (as :func:`tight_arcs`)."""
     unions: list = []
     directions: list = []
+    longds: list = []
     cur, stuck = p, 0
     for leg in range(TURN_LEGS):
         d = first if leg % 2 == 0 else -first
@@ -343,12 +374,14 @@ def _turn(links: LinkModel, p: Pose, R: float, turn: int, first: int, there) -> 
         stuck = stuck + 1 if not got else 0
         if stuck == 2:
             return None
+        piece = union_longd(got[0][0]) if got else 0.0
         for u, q in got:
             unions.append(u)
             directions.append(d)
+            longds.append(piece)
             cur = q
         if there(cur):
-            return tuple(unions), tuple(directions), cur
+            return tuple(unions), tuple(directions), cur, tuple(longds)
     return None
 
 

@@ -604,12 +604,14 @@ def lattice_search(
     :data:`segplan.planning.schedule.SCHEDULE`, the one every plan of the package is made with).
     ``progress``: called with the expansions of the current search every
     :attr:`~segplan.planning.schedule.Schedule.deadline_every` expansions (it only watches).
-    ``alternatives``: for a robot that may reverse, a list that receives the plan of the
-    improvement by arcs and turn-arounds (:func:`segplan.planning.lattice.escape.improve_with_arcs`)
-    where it differs, instead of its replacing the plan: its cost is compared before
-    refinement, and the lattice's plan refines better on some floors (the reverse study's
-    k-turn-060: 1.11 times OMPL's length refined, 1.39 through the improvement), so the
-    default planner refines both and keeps the cheaper.
+    ``alternatives``: for a robot that may reverse, a list that receives the plan of its
+    improvement by arcs either way and turn-arounds
+    (:func:`segplan.planning.lattice.escape.improve_with_arcs` with ``reverse_factor``)
+    where it differs from the plan (after the forward arcs' improvement, which every robot
+    gets), instead of its replacing the plan: its cost is compared before refinement, and
+    the lattice's plan refines better on some floors (the reverse study's bay-out-050: 1.00
+    times OMPL's length refined, 1.13 through the improvement), so the default planner
+    refines both and keeps the cheaper.
     """
     options = lattice_options(
         scenario,
@@ -653,11 +655,10 @@ def lattice_search(
             raise
         plan = _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress)
     if escapes:
-        rf, cp = options["reverse_factor"], options["cusp_penalty"] * scenario.robot.L
-        better = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, rf, cp)
+        plan = improve_with_arcs(scenario, links, plan, t0, deadline, schedule)
         if alternatives is not None and scenario.robot.reverse:
+            rf, cp = options["reverse_factor"], options["cusp_penalty"] * scenario.robot.L
+            better = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, rf, cp)
             if better is not plan:
                 alternatives.append(better)
-        else:
-            plan = better
     return plan, links
