@@ -54,6 +54,8 @@ __all__ = [
     "RADIUS_FACTORS",
     "STEP",
     "TURNS",
+    "IMPROVE_TRIES",
+    "TURN_AROUND_FROM",
     "TURN_LEGS",
     "TURN_SHIFTS",
     "Arc",
@@ -252,6 +254,13 @@ def hops(
 #: A reversing robot's escape pairs with arcs at both ends: those of this many cheapest arcs
 #: of each end (:func:`escape_pairs`). Set by hand; not tuned.
 BOTH_ENDS = 8
+#: Turn-arounds are offered where the start's and the goal's headings differ by more than
+#: this (radians): a quarter turn, within a lattice's reach without one.
+TURN_AROUND_FROM = 0.5 * math.pi
+#: Pairs tried at most by a reversing robot's improvement (:func:`_improve_reversing`), the
+#: cheapest estimates first. Set by hand (the bay-out floors' improvement took 40-85 ms
+#: without a cap); not tuned.
+IMPROVE_TRIES = 32
 #: Straight moves before a turn-around (times ``R``; :func:`turn_arounds`). Set by hand; not tuned.
 TURN_SHIFTS = (0.5, 1.0, 2.0, 3.0)
 #: Legs of a turn-around at most (:func:`turn_arounds`).
@@ -431,7 +440,8 @@ def arc_pairs(
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
     that may reverse (``scenario.robot.reverse``) also the arcs driven backwards
-    (:func:`reversed_arc`), the hops (:func:`hops`) both ways and the turn-arounds
+    (:func:`reversed_arc`), the hops (:func:`hops`) both ways and, where the goal's heading
+    is more than :data:`TURN_AROUND_FROM` from the start's, the turn-arounds
     (:func:`turn_arounds`), ordered with ``reverse_factor`` and ``cusp_penalty`` (m).
 
     ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
@@ -450,10 +460,13 @@ def arc_pairs(
     if ends == "both":
         starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
         starts += [h for d in (1, -1) if with_hops for h in hops(links, start, robot.L, False, d, rf)]
+    turning = abs(wrap_ieee(goal.theta - start.theta)) > TURN_AROUND_FROM
+    if ends == "both" and turning:
         starts += turn_arounds(links, start, goal.theta, R, rf, cp)
     goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
     goals += [h for d in (1, -1) if with_hops for h in hops(links, goal, robot.L, True, d, rf)]
-    goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp)]
+    if turning:
+        goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp)]
     pairs = escape_pairs(starts, goals, start, goal, R, True)
     return pairs if ordered else _interleaved(pairs)
 
@@ -557,7 +570,8 @@ def _improve_reversing(
     if time.perf_counter() > deadline:
         return plan
     ws = links.ws
-    for est, a, b in arc_pairs(scenario, links, "both", rf, cp, ordered=True, with_hops=False):
+    pairs = arc_pairs(scenario, links, "both", rf, cp, ordered=True, with_hops=False)
+    for est, a, b in pairs[:IMPROVE_TRIES]:
         if est >= best_w:
             break  # ordered by this estimate: no later pair can win
         if time.perf_counter() > deadline:
