@@ -558,9 +558,9 @@ def _format_plan(result: Plan, name: str) -> str:
     return "\n".join(lines)
 
 
-def _draw(path: str, scenario, unions, title: str) -> None:
-    """Write the floor and the plan's unions (:func:`segplan.viz.plot.plan_figure`) to ``path``;
-    OSError propagates."""
+def _draw(path: str, scenario, unions, title: str, directions=()) -> None:
+    """Write the floor and the plan's unions (:func:`segplan.viz.plot.plan_figure`; a reverse
+    plan's ``directions``, :attr:`segplan.Plan.directions`) to ``path``; OSError propagates."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -568,7 +568,7 @@ def _draw(path: str, scenario, unions, title: str) -> None:
 
     from .viz import plot
 
-    fig = plot.plan_figure(scenario, unions, title)
+    fig = plot.plan_figure(scenario, unions, title, directions)
     try:
         fig.savefig(path, dpi=120, bbox_inches="tight")
     finally:
@@ -751,7 +751,8 @@ def _plan(args, scenario: Scenario, name: str) -> int:
             print(json.dumps(out, indent=2))
         if args.out:
             try:
-                _draw(args.out, scenario, exc.best.unions, f"{name}: no path (closest partial plan)")
+                partial = f"{name}: no path (closest partial plan)"
+                _draw(args.out, scenario, exc.best.unions, partial, exc.best.directions)
             except OSError as err:
                 print(f"segplan: error: cannot write {args.out}: {err.strerror or err}", file=sys.stderr)
         return EXIT_NO_PATH
@@ -776,7 +777,7 @@ def _plan(args, scenario: Scenario, name: str) -> int:
     title = f"{name}: LONGD {result.cost:.2f} m, {_planner_text(result, args)}"
     if args.out:
         try:
-            _draw(args.out, scenario, result.unions, title)
+            _draw(args.out, scenario, result.unions, title, result.directions)
         except OSError as exc:
             return _error(f"cannot write {args.out}: {exc.strerror or exc}")
         if not args.json:

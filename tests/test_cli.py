@@ -182,7 +182,7 @@ def test_the_figure_title_names_the_planner(monkeypatch, tmp_path):
     import segplan.cli as cli
 
     titles = []
-    monkeypatch.setattr(cli, "_draw", lambda path, scenario, unions, title: titles.append(title))
+    monkeypatch.setattr(cli, "_draw", lambda path, scenario, unions, title, *_: titles.append(title))
     assert main(["plan", "turn_around", "--out", str(tmp_path / "a.png")]) == 0
     assert main(["plan", "turn_around", "--planner", "paper", "--out", str(tmp_path / "b.png")]) == 0
     assert "default planner (lattice)" in titles[0] and "the paper's search, heuristic a" in titles[1]

@@ -4,6 +4,7 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import segplan
@@ -123,3 +124,35 @@ def test_plan_poses_drive_reverse_links_backwards():
     m = measure_scenario_path(P, sc)
     assert m.reversals == len(plan.cusps) and not m.collides
     assert m.front_length == pytest.approx(plan.cost, rel=1e-4)
+
+
+def test_the_figure_draws_reversing_links_apart_and_marks_each_cusp():
+    """plan_figure (the command line's --out) with a reverse plan's directions: forward and
+    reverse rear paths under their own legend entries, a cross at each cusp (the node where
+    the direction changes, in driving order); bad directions refused."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from segplan.viz import plot
+
+    sc = load_scenario("dead_end_bay")
+    plan = segplan.plan_scenario(sc)
+    fig = plot.plan_figure(sc, plan.unions, "bay", plan.directions)
+    try:
+        ax = fig.axes[0]
+        labels = [line.get_label() for line in ax.lines]
+        assert "rear path A, forward" in labels and "rear path A, reverse" in labels
+        (cross,) = [line for line in ax.lines if line.get_label() == "cusp"]
+        xy = np.column_stack(cross.get_data())
+        expected = np.array([[plan.nodes[i].x, plan.nodes[i].y] for i in plan.cusps])
+        assert xy == pytest.approx(expected, abs=1e-12)
+        reverse = [line for line in ax.lines if line.get_label() == "rear path A, reverse"]
+        assert reverse[0].get_color() == plot.REVERSE_COLOR
+    finally:
+        plt.close(fig)
+    with pytest.raises(ValueError, match="directions"):
+        plot.plan_figure(sc, plan.unions, "bay", (1,) * (len(plan.unions) - 1))
+    with pytest.raises(ValueError, match="directions"):
+        plot.plan_figure(sc, plan.unions, "bay", (2,) * len(plan.unions))

@@ -35,6 +35,7 @@ __all__ = [
     "FRONT_STYLE",
     "REAR_LABEL",
     "REAR_STYLE",
+    "REVERSE_COLOR",
     "ROBOT_STYLE",
     "has_body",
     "legend_beside",
@@ -432,7 +433,12 @@ def plot_floor(
 
 
 def plan_figure(
-    floor: Scenario | Floor, unions: Iterable[Union] = (), title: str = "", *, figsize=(10.0, 7.0)
+    floor: Scenario | Floor,
+    unions: Iterable[Union] = (),
+    title: str = "",
+    directions: Sequence[int] = (),
+    *,
+    figsize=(10.0, 7.0),
 ):
     """A figure of a floor and a plan on it, to save to a file (the command line's ``--out``).
 
@@ -441,13 +447,33 @@ def plan_figure(
     beyond the paper's, :func:`has_body`), a scenario's start (green) and goal (red) (with
     that body, :func:`plot_body`),
     every one in the legend and the legend beside the floor (:func:`legend_beside`).
+    ``directions``: a plan's :attr:`segplan.Plan.directions` (``()``: all forwards); the
+    links driven backwards are drawn in :data:`REVERSE_COLOR` under their own legend
+    entries and each cusp (a change of direction) is marked by a cross.
     Returns the :class:`matplotlib.figure.Figure`; the caller saves and closes it.
+
+    Raises
+    ------
+    ValueError
+        ``directions`` given and not one 1 or -1 per union.
     """
+    unions = list(unions)
+    directions = [int(d) for d in directions] if len(directions) else []
+    if directions and (len(directions) != len(unions) or any(d not in (1, -1) for d in directions)):
+        n = len(unions)
+        raise ValueError(f"directions must hold 1 or -1 for each of the {n} unions, got {directions}")
     fig, ax = plt.subplots(figsize=figsize)
     plot_floor(floor, ax, poses=False)
-    unions = list(unions)
     r = floor.robot if isinstance(floor, Scenario) else None
-    if unions:
+    if unions and -1 in directions:
+        for d, colour, what in ((1, "C0", "forward"), (-1, REVERSE_COLOR, "reverse")):
+            part = [u for u, x in zip(unions, directions, strict=True) if x == d]
+            if part:
+                plot_plan(part, ax, robots=4, robot=r, color=colour, label=f"rear path A, {what}")
+        links = zip(unions[:-1], directions[:-1], directions[1:], strict=True)
+        cusps = [u.p0 if d < 0 else u.p1 for u, d, e in links if d != e]
+        ax.plot([p.x for p in cusps], [p.y for p in cusps], "kx", ms=9, mew=2, label="cusp", zorder=5)
+    elif unions:
         plot_plan(unions, ax, robots=4, robot=r)
     if r is not None:
         if has_body(r):
@@ -459,6 +485,10 @@ def plan_figure(
     ax.set_title(title)
     legend_beside(ax)
     return fig
+
+
+#: Colour of the links a plan drives backwards (:func:`plan_figure`).
+REVERSE_COLOR = "C1"
 
 
 # -- the cost --------------------------------------------------------------------------
