@@ -147,40 +147,17 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc
     list of Arc
         One per side and per turn of :data:`TURNS` reached with every union free.
     """
-    ws = links.ws
     p = Pose(*pose)
     out = []
     per = [int(round(t / STEP)) for t in TURNS]
     for side in (1, -1):
-        rho = None
-        for f in RADIUS_FACTORS:  # the shape is the same all along: the first union decides
-            a, b = (
-                (_circle_pose(p, f * R, side, -STEP), p) if into else (p, _circle_pose(p, f * R, side, STEP))
-            )
-            u = links.union(a, b)
-            if u is not None and ws.curvature_ok(u):
-                rho = f * R
-                break
-        if rho is None:
-            continue
-        unions, cost, cur = [], 0.0, p
-        u1 = piece = None  # the first union and its LONGD: every later one is congruent
-        for k in range(1, per[-1] + 1):
-            nxt = _circle_pose(p, rho, side, -k * STEP if into else k * STEP)
-            a, b = (nxt, cur) if into else (cur, nxt)
-            geo = None if u1 is None else intrinsic_interval(a, b)
-            if geo is not None and geo[4] < u1.alpha < geo[5]:  # its frame, moved along
-                d, psi, phi0, phi1, _, _ = geo
-                u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
-            else:
-                u = links.union(a, b)
-            if u is None or not ws.union_free(u):
-                break
-            if u1 is None:
-                u1, piece = u, union_longd(u)
+        # into the pose: the circle behind it, driven forwards to it (a leg out of it, backwards)
+        got = _leg(links, p, R, side, -1 if into else 1, _never, per[-1])
+        unions, cost = [], 0.0
+        piece = union_longd(got[0][0]) if got else 0.0  # every later union is congruent
+        for k, (u, cur) in enumerate(got, 1):
             unions.append(u)
             cost += piece
-            cur = nxt
             if k in per:
                 chain = tuple(reversed(unions)) if into else tuple(unions)
                 first, last = (cur, p) if into else (p, cur)
@@ -269,10 +246,19 @@ TURN_LEGS = 12
 LEG_STEPS = 32
 
 
-def _leg(links: LinkModel, p: Pose, R: float, side: int, direction: int, stop) -> list[tuple]:
-    """``(union, pose)`` of the free unions along the tight circle (:data:`RADIUS_FACTORS`)
-    on ``side`` of ``p``, driven ``direction``, until one is not free or ``stop(pose)``;
-    each union stored as a plan stores its link (module docstring)."""
+def _never(pose: Pose) -> bool:
+    """A leg's ``stop`` that never stops it (:func:`_leg`)."""
+    return False
+
+
+def _leg(
+    links: LinkModel, p: Pose, R: float, side: int, direction: int, stop, steps: int = LEG_STEPS
+) -> list[tuple]:
+    """``(union, pose)`` of the free unions along the tight circle on ``side`` of ``p``
+    (the smallest radius of :data:`RADIUS_FACTORS` whose first union keeps the steering
+    limit: the shape is the same all along), each turning by :data:`STEP`, driven
+    ``direction``, at most ``steps`` of them, until one is not free or ``stop(pose)``; each
+    union stored as a plan stores its link (module docstring)."""
     ws = links.ws
     sign = 1.0 if direction > 0 else -1.0
     rho = None
@@ -287,7 +273,7 @@ def _leg(links: LinkModel, p: Pose, R: float, side: int, direction: int, stop) -
         return out
     cur = p
     u1 = None  # the first union: every later one is congruent (its frame, moved along)
-    for k in range(1, LEG_STEPS + 1):
+    for k in range(1, steps + 1):
         q = _circle_pose(p, rho, side, sign * k * STEP)
         a, b = (cur, q) if direction > 0 else (q, cur)
         geo = None if u1 is None else intrinsic_interval(a, b)
