@@ -164,3 +164,26 @@ def test_reversing_plans_are_improved_by_turn_arounds_and_arcs():
     _valid(plan, sc)
     w = weighted_cost(plan, 1.25, 0.5 * sc.robot.L)
     assert w < weighted_cost(plain, 1.25, 0.5 * sc.robot.L) - 0.5
+
+
+def test_cusps_move_where_the_search_cost_drops_and_the_plan_stays_valid(monkeypatch):
+    """polish_cusps: the refinement's local moves on each cusp (its two links driven opposite
+    ways), after the runs' refinement; the plan stays valid with its cusps; on bay-out-041
+    the cusp the lattice put on its coarse headings moves and the search's cost drops."""
+    from segplan.planning import default
+    from segplan.planning.options import RefineOptions
+    from segplan.planning.refine import polish_cusps
+
+    sc = rs.with_reverse(rf.reverse_floor("bay-out", 41))
+    cp = 0.5 * sc.robot.L
+    polished = segplan.plan_scenario(sc)
+    monkeypatch.setattr(default, "polish_cusps", lambda plan, *args, **kw: (plan, 0))
+    kept = segplan.plan_scenario(sc)
+    _valid(polished, sc)
+    assert len(polished.cusps) == len(kept.cusps) >= 1
+    assert weighted_cost(polished, 1.25, cp) < weighted_cost(kept, 1.25, cp) - 0.1
+    assert polished.cost == pytest.approx(sum(union_longd(u) for u in polished.unions), rel=1e-9)
+    # a plan without cusps is returned as it is
+    plain = segplan.load_scenario("single_obstacle")
+    forward = segplan.plan_scenario(plain)
+    assert polish_cusps(forward, LinkModel(workspace_of(plain)), RefineOptions(), 1.25) == (forward, 0)

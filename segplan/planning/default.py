@@ -23,7 +23,9 @@ forward-only; the lattice reverses where it pays; plans are compared by the latt
 (:func:`segplan.planning.lattice.reverse.weighted_cost`: reverse links weighted, cusps
 penalised) and the lower bound of ``near_lower_bound`` is the Reeds–Shepp length. The
 refinement refines each same-direction run of a plan on its own
-(:func:`segplan.planning.lattice.reverse.by_runs`): the cusps stay where the lattice put them.
+(:func:`segplan.planning.lattice.reverse.by_runs`), then each cusp tries the local moves
+of the refinement on its two links (:func:`segplan.planning.refine.polish_cusps`): the
+lattice puts cusps on its coarse headings.
 The lattice's improvement by tight arcs and turn-arounds
 (:func:`segplan.planning.lattice.escape.improve_with_arcs`) is a third plan refined with the
 others rather than a replacement of the lattice's (``alternatives`` of
@@ -42,7 +44,7 @@ from .lattice.reverse import by_runs, weighted_cost
 from .options import DefaultOptions
 from .plan import NoPathError, Plan, Refinement
 from .reeds_shepp import reeds_shepp_length
-from .refine import refine_with
+from .refine import polish_cusps, refine_with
 from .stages import lattice_stage, paper_search
 
 __all__ = ["default_pipeline", "lattice_budget"]
@@ -130,11 +132,14 @@ def _refine(plan: Plan, links, options: DefaultOptions, ctx: PlanningContext) ->
         return out
 
     out = by_runs(plan, step)
+    factor = options.lattice.reverse_factor
+    out, cusp_moves = polish_cusps(out, links, options.refine, factor, deadline=ctx.deadline)
     total = {
         f.name: sum(getattr(r, f.name) for r in done)
         for f in dataclasses.fields(Refinement)
         if f.name in ("shortcuts", "splits", "moves", "updates", "checked", "seconds")
     }
+    total["moves"] += cusp_moves
     info = Refinement(
         cost_before=plan.cost,
         cost_after=out.cost,

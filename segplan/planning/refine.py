@@ -53,10 +53,10 @@ from .certified import FreeScreen
 from .context import Deadline, workspace_of
 from .links import ALPHA_MARGIN, LinkModel
 from .options import RefineOptions
-from .plan import PLAN_RTOL, Plan, Refinement
+from .plan import PLAN_RTOL, Plan, Refinement, unions_longd
 from .validity import Workspace
 
-__all__ = ["certain_failures", "refine", "refine_with"]
+__all__ = ["certain_failures", "polish_cusps", "refine", "refine_with"]
 
 #: The default moves of a node (:attr:`RefineOptions.moves`), as an array.
 MOVES = np.array(RefineOptions.moves, dtype=float)
@@ -442,6 +442,80 @@ class _Refiner:
         if ka is None or kb is None:
             return math.inf
         return ka[1] + kb[1] - gain
+
+
+def polish_cusps(
+    plan: Plan,
+    links: LinkModel,
+    options: RefineOptions,
+    reverse_factor: float,
+    deadline: Deadline | None = None,
+) -> tuple[Plan, int]:
+    """Local moves of a plan's cusps (a robot that may reverse; beyond the paper): ``(plan,
+    moves taken)``.
+
+    The refinement works on each same-direction run of a reverse plan with its ends fixed
+    (:func:`segplan.planning.lattice.reverse.by_runs`), so a cusp stays where the lattice put
+    it, on the lattice's coarse headings. Here each cusp in turn tries the local moves of
+    step 3 (:attr:`RefineOptions.moves`, from ``first_step`` down to ``min_step`` times
+    ``L``, at most ``max_sweeps`` halvings) on its two links, one driven each way (a reverse
+    link is the forward union from its far node to its near one): a move is taken when both
+    links are free (the certified test) and the search's cost of the two, LONGD [1] by the
+    refinement's rule, times ``reverse_factor`` for the reverse one, drops by at least
+    ``min_gain * L``. The returned plan's ``cost`` is its exact LONGD [1]; ``plan`` itself
+    if no move was taken.
+    """
+    cusps = plan.cusps
+    if not cusps:
+        return plan, 0
+    r = _Refiner(links, options, deadline)
+    nodes = list(plan.nodes)
+    dirs = plan.link_directions
+    L = r.L
+    gain = options.min_gain * L
+
+    def ends(i: int, c: Pose, k: int) -> tuple:  # the stored union's ends of link k at node i = c
+        a, b = (nodes[k], c) if k == i - 1 else (c, nodes[k + 1])
+        return (a, b) if dirs[k] > 0 else (b, a)
+
+    def cost(i: int, c: Pose) -> float:
+        total = 0.0
+        for k in (i - 1, i):
+            w = 1.0 if dirs[k] > 0 else reverse_factor
+            total += w * r.link(*ends(i, c, k))
+        return total
+
+    taken = 0
+    for i in cusps:
+        step = options.first_step * L
+        for _ in range(options.max_sweeps):
+            if step < options.min_step * L or r.stop():
+                break
+            p = nodes[i]
+            now = cost(i, p)
+            c, sn = math.cos(p.theta), math.sin(p.theta)
+            for fwd, left, turn in r.moves_table:
+                f, lt = fwd * step, left * step
+                q = Pose(p.x + c * f - sn * lt, p.y + sn * f + c * lt, float(wrap(p.theta + turn * step / L)))
+                if cost(i, q) < now - gain:
+                    nodes[i] = q
+                    taken += 1
+                    break
+            else:
+                step *= 0.5
+    if not taken:
+        return plan, 0
+    unions = []
+    for k in range(len(dirs)):
+        a, b = (nodes[k], nodes[k + 1]) if dirs[k] > 0 else (nodes[k + 1], nodes[k])
+        unions.append(r.known[(a, b)][0] if (a, b) in r.known else r.links.union(a, b))
+    kinds = list(plan.kinds)
+    for i in cusps:
+        kinds[i] = "refined" if nodes[i] != plan.nodes[i] else kinds[i]
+    out = dataclasses.replace(
+        plan, nodes=tuple(nodes), unions=tuple(unions), kinds=tuple(kinds), cost=unions_longd(unions)
+    )
+    return out, taken
 
 
 def certain_failures(
