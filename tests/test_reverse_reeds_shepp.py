@@ -15,6 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from ompl_distance import ompl_distance
+from test_lattice_oracles import _drive as drive
 
 from segplan.planning import reeds_shepp
 from segplan.planning.dubins import dubins_length_scalar
@@ -87,17 +88,10 @@ def test_reeds_shepp_symmetric_under_reversal(p, q, R):
 
 
 def _drive(pose, pieces, R):
-    """End pose and length of a path of pieces ``(signed length, curvature in units of 1/R)``."""
-    x, y, th = pose
-    for s, k in pieces:
-        k = k / R
-        if abs(k) < 1e-12:
-            x, y = x + s * math.cos(th), y + s * math.sin(th)
-        else:
-            th1 = th + s * k
-            x, y = x + (math.sin(th1) - math.sin(th)) / k, y - (math.cos(th1) - math.cos(th)) / k
-            th = th1
-    return (x, y, th), sum(abs(s) for s, _ in pieces)
+    """End pose and length of a path of pieces ``(signed length, curvature in units of 1/R)``
+    (the oracles' integration, :func:`test_lattice_oracles._drive`: a negative length drives
+    the piece backwards)."""
+    return drive(pose, pieces, R), sum(abs(s) for s, _ in pieces)
 
 
 @settings(max_examples=400, deadline=None)
