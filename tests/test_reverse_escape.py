@@ -105,7 +105,7 @@ def test_dead_end_bays_too_narrow_to_tilt_in_are_left_by_a_hop(index):
     assert -1 in plan.link_directions
 
 
-@pytest.mark.parametrize("index", [8, 11, 37])
+@pytest.mark.parametrize("index", [8, 11, 37, 79])
 def test_k_turns_in_a_corridor_narrower_than_two_turning_radii(index):
     """The k-turn floors the lattice could not turn around in (it searched for 10 s): a
     turn-around out of the start (forward and backward legs along tight circles, each

@@ -57,6 +57,7 @@ __all__ = [
     "IMPROVE_TRIES",
     "TURN_AROUND_FROM",
     "TURN_LEGS",
+    "TURN_SHARES",
     "TURN_SHIFTS",
     "Arc",
     "arc_pairs",
@@ -240,6 +241,10 @@ TURN_AROUND_FROM = 0.5 * math.pi
 IMPROVE_TRIES = 32
 #: Straight moves before a turn-around (times ``R``; :func:`turn_arounds`). Set by hand; not tuned.
 TURN_SHIFTS = (0.5, 1.0, 2.0, 3.0)
+#: Shares of its free unions a turn-around's leg drives, tried in turn while none gets there
+#: (:func:`turn_arounds`): the whole leg, then half (k-turn-079: a full leg left no room for
+#: the next). Set by hand; not tuned.
+TURN_SHARES = (1.0, 0.5)
 #: Legs of a turn-around at most (:func:`turn_arounds`).
 TURN_LEGS = 12
 #: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
@@ -293,7 +298,13 @@ def _leg(
 
 
 def turn_arounds(
-    links: LinkModel, pose, target: float, R: float, reverse_factor: float = 1.0, cusp_penalty: float = 0.0
+    links: LinkModel,
+    pose,
+    target: float,
+    R: float,
+    reverse_factor: float = 1.0,
+    cusp_penalty: float = 0.0,
+    shares: tuple = TURN_SHARES,
 ) -> list[Arc]:
     """Multi-point turns out of ``pose`` until its heading is within ``STEP / 2`` of
     ``target`` (radians): legs along tight circles, forwards and backwards in turn, each
@@ -305,7 +316,9 @@ def turn_arounds(
 
     The turn starts at ``pose`` or, if it gets stuck there (a start near the corridor's
     closed end: k-turn-037), after one straight union along the heading, forwards or
-    backwards by :data:`TURN_SHIFTS` times ``R`` (the nearest that works). One
+    backwards by :data:`TURN_SHIFTS` times ``R`` (the nearest that works). If no turn gets
+    there with whole legs, legs of half their free length are tried (``shares``, by default
+    :data:`TURN_SHARES`). One
     :class:`Arc` (``into=False``, its search cost with ``reverse_factor`` and
     ``cusp_penalty``, m) per turning sense and first direction that gets there; none where
     the heading is already there."""
@@ -328,21 +341,31 @@ def turn_arounds(
                 if u is not None and ws.union_free(u):
                     yield (u,), (sign,), q
 
-    starts: list = []  # the ways tried so far (made once)
+    more = ways()  # made as they are first needed, shared by every turn
+    starts: list = []  # the ways made so far
+    out: list = []
+    for share in shares:
+        if not out:
+            out = _turn_arounds(links, p, R, there, more, starts, share, reverse_factor, cusp_penalty)
+    return out
+
+
+def _turn_arounds(links, p, R, there, more, starts, share, reverse_factor, cusp_penalty) -> list[Arc]:
+    """:func:`turn_arounds` with legs driving ``share`` of their free unions; ``starts`` the
+    ways to start from made so far, ``more`` the generator of the rest."""
     out = []
     for turn in (1, -1):
         for first in (1, -1):
             k = 0
-            more = ways() if not starts else None
             while True:
                 if k == len(starts):
-                    way = next(more, None) if more is not None else None
+                    way = next(more, None)
                     if way is None:
                         break
                     starts.append(way)
                 lead, lead_dirs, p0 = starts[k]
                 k += 1
-                arc = _turn(links, p0, R, turn, first, there)
+                arc = _turn(links, p0, R, turn, first, there, share)
                 if arc is None:
                     continue
                 unions, directions = lead + arc[0], lead_dirs + arc[1]
@@ -354,10 +377,14 @@ def turn_arounds(
     return out
 
 
-def _turn(links: LinkModel, p: Pose, R: float, turn: int, first: int, there) -> tuple | None:
+def _turn(
+    links: LinkModel, p: Pose, R: float, turn: int, first: int, there, share: float = 1.0
+) -> tuple | None:
     """The legs of one turn-around from ``p`` (:func:`turn_arounds`): ``(unions, directions,
-    end, longds)``, or None if it gets stuck or runs out of legs. The unions of a leg are
-    congruent: each leg's first LONGD [1] stands for the others (as :func:`tight_arcs`)."""
+    end, longds)``, or None if it gets stuck or runs out of legs. Each leg drives the
+    ``share`` of its free unions (rounded up; all of them to reach the target). The unions of
+    a leg are congruent: each leg's first LONGD [1] stands for the others (as
+    :func:`tight_arcs`)."""
     unions: list = []
     directions: list = []
     longds: list = []
@@ -366,6 +393,8 @@ def _turn(links: LinkModel, p: Pose, R: float, turn: int, first: int, there) -> 
         d = first if leg % 2 == 0 else -first
         side = turn if d > 0 else -turn  # both legs turn the heading the same way
         got = _leg(links, cur, R, side, d, there)
+        if share < 1.0 and got and not there(got[-1][1]):
+            got = got[: max(1, math.ceil(share * len(got)))]
         stuck = stuck + 1 if not got else 0
         if stuck == 2:
             return None
@@ -420,8 +449,7 @@ def arc_pairs(
     ends: str,
     reverse_factor: float = 1.0,
     cusp_penalty: float = 0.0,
-    ordered: bool = False,
-    with_hops: bool = True,
+    escaping: bool = True,
 ) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
@@ -432,8 +460,11 @@ def arc_pairs(
 
     ``ends`` is a failed search's ``NoPathError.escapable`` (:mod:`segplan.planning.lattice.search`):
     ``"both"`` after an exhausted lattice, ``"goal"`` after one whose goal looked enclosed.
-    A reversing robot's pairs are interleaved (:func:`_interleaved`) unless ``ordered``; its
-    hops are left out unless ``with_hops``.
+    For an escape (``escaping``), a reversing robot's pairs are interleaved
+    (:func:`_interleaved`) and its turn-arounds may have half legs (:data:`TURN_SHARES`);
+    otherwise (the improvement of a found plan, :func:`improve_with_arcs`) they are in the
+    order of their estimates, without hops (they are for traps: their hundreds of pairs took
+    seconds) and with whole legs only.
     """
     robot = scenario.robot
     R = robot.min_turning_radius
@@ -445,16 +476,17 @@ def arc_pairs(
     start, goal = Pose(*scenario.start), Pose(*scenario.goal)
     if ends == "both":
         starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
-        starts += [h for d in (1, -1) if with_hops for h in hops(links, start, robot.L, False, d, rf)]
+        starts += [h for d in (1, -1) if escaping for h in hops(links, start, robot.L, False, d, rf)]
     turning = abs(wrap_ieee(goal.theta - start.theta)) > TURN_AROUND_FROM
+    shares = TURN_SHARES if escaping else TURN_SHARES[:1]
     if ends == "both" and turning:
-        starts += turn_arounds(links, start, goal.theta, R, rf, cp)
+        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares)
     goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
-    goals += [h for d in (1, -1) if with_hops for h in hops(links, goal, robot.L, True, d, rf)]
+    goals += [h for d in (1, -1) if escaping for h in hops(links, goal, robot.L, True, d, rf)]
     if turning:
-        goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp)]
+        goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp, shares)]
     pairs = escape_pairs(starts, goals, start, goal, R, True)
-    return pairs if ordered else _interleaved(pairs)
+    return _interleaved(pairs) if escaping else pairs
 
 
 def _interleaved(pairs: list[tuple]) -> list[tuple]:
@@ -556,7 +588,7 @@ def _improve_reversing(
     if time.perf_counter() > deadline:
         return plan
     ws = links.ws
-    pairs = arc_pairs(scenario, links, "both", rf, cp, ordered=True, with_hops=False)
+    pairs = arc_pairs(scenario, links, "both", rf, cp, escaping=False)
     for est, a, b in pairs[:IMPROVE_TRIES]:
         if est >= best_w:
             break  # ordered by this estimate: no later pair can win
@@ -567,10 +599,15 @@ def _improve_reversing(
             u = links.union(p0, p1) if d > 0 else links.union(p1, p0)
             if u is None or not ws.union_free(u):
                 continue
-            cand = join_arcs(scenario, a, (u,), b, plan.expanded, t0, plan, middle_direction=d)
-            w = weighted_cost(cand, rf, cp)
+            # the search's cost of the joined plan from its parts (the arcs' are known): the
+            # union's, and a cusp where it meets an arc driven the other way
+            w = (a.search_cost if a else 0.0) + (b.search_cost if b else 0.0)
+            w += union_longd(u) * (rf if d < 0 else 1.0)
+            w += cp * (
+                (a is not None and a.link_directions[-1] != d) + (b is not None and b.link_directions[0] != d)
+            )
             if w < best_w:
-                best, best_w = cand, w
+                best, best_w = join_arcs(scenario, a, (u,), b, plan.expanded, t0, plan, middle_direction=d), w
     return best
 
 
