@@ -202,19 +202,20 @@ def test_plan_clearance_is_the_gap_beyond_half_width(floors):
 
 # -- the time law ---------------------------------------------------------------------------------
 def _dense_worst(plan, law, m=3001):
-    """Largest ratio of each quantity to its limit on a dense resampling of every union."""
+    """Largest ratio of each quantity to its limit on a dense resampling of every union, in
+    driving order (a reverse link from its far end; the speed is ``|v|``, its rate ``a``
+    times the direction: for a forward plan, ``v`` and ``a`` themselves)."""
+    speed, along = np.abs(law.v), law.a * law.direction  # d|v|/dt
     worst = {"v": 0.0, "a": float(np.abs(law.a).max() / law.a_max), "lat": 0.0, "rate": 0.0}
-    for k, u in enumerate(plan.unions):
-        rows = _union_rows(law, k)
-        x = np.linspace(0.0, u.x_end, m)
+    for k, (u, d) in enumerate(zip(plan.unions, plan.link_directions, strict=True)):
+        rows = np.flatnonzero(law.union == k)
+        x = np.linspace(0.0, u.x_end, m)[:: 1 if d > 0 else -1]
         g = np.sqrt(1.0 + u.slope(x) ** 2)
-        s = law.s[rows[0]] + np.concatenate(
-            ([0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(x)))
-        )  # trapezoid
+        s = law.s[rows[0]] + np.concatenate(([0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.abs(np.diff(x)))))
         kappa = u.curvature(x)
-        steer_slope = np.gradient(np.arctan(u.L * kappa), s)  # d steer / ds, finite differences
+        steer_slope = np.gradient(np.arctan(u.L * kappa), s)
         i = np.clip(np.searchsorted(law.s[rows], s, side="right") - 1, 0, rows.size - 2)
-        v2 = np.maximum(law.v[rows][i] ** 2 + 2.0 * law.a[rows][i] * (s - law.s[rows][i]), 0.0)
+        v2 = np.maximum(speed[rows][i] ** 2 + 2.0 * along[rows][i] * (s - law.s[rows][i]), 0.0)
         worst["v"] = max(worst["v"], float(np.sqrt(v2).max() / law.v_max))
         worst["lat"] = max(worst["lat"], float(np.max(v2 * np.abs(kappa)) / law.a_lat_max))
         worst["rate"] = max(

@@ -20,6 +20,7 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+from test_trajectory import _dense_worst
 
 import segplan
 from segplan.planning.plan import lattice_plan
@@ -111,28 +112,6 @@ def test_the_steering_drives_the_bicycle_model_backwards(bay):
             assert math.hypot(flipped[0] - far.x, flipped[1] - far.y) > 10 * max(error, 1e-4)
             flipped_tested = True
     assert flipped_tested
-
-
-def _dense_worst(plan, law, m=3001):
-    """Largest ratio of each quantity to its limit on a dense resampling of every union, in
-    driving order (tests/test_trajectory.py's check with the speed |v|)."""
-    speed, along = np.abs(law.v), law.a * law.direction  # d|v|/dt
-    worst = {"v": 0.0, "a": float(np.abs(law.a).max() / law.a_max), "lat": 0.0, "rate": 0.0}
-    for k, (u, d) in enumerate(zip(plan.unions, plan.link_directions, strict=True)):
-        rows = np.flatnonzero(law.union == k)
-        x = np.linspace(0.0, u.x_end, m)[:: 1 if d > 0 else -1]
-        g = np.sqrt(1.0 + u.slope(x) ** 2)
-        s = law.s[rows[0]] + np.concatenate(([0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.abs(np.diff(x)))))
-        kappa = u.curvature(x)
-        steer_slope = np.gradient(np.arctan(u.L * kappa), s)
-        i = np.clip(np.searchsorted(law.s[rows], s, side="right") - 1, 0, rows.size - 2)
-        v2 = np.maximum(speed[rows][i] ** 2 + 2.0 * along[rows][i] * (s - law.s[rows][i]), 0.0)
-        worst["v"] = max(worst["v"], float(np.sqrt(v2).max() / law.v_max))
-        worst["lat"] = max(worst["lat"], float(np.max(v2 * np.abs(kappa)) / law.a_lat_max))
-        worst["rate"] = max(
-            worst["rate"], float(np.max(np.sqrt(v2) * np.abs(steer_slope)) / law.steer_rate_max)
-        )
-    return worst
 
 
 @pytest.mark.parametrize("limits", LIMITS)
