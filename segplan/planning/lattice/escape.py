@@ -220,11 +220,11 @@ def hops(
                 if not ws.pose_free(q):
                     continue
                 u = links.union(p, q) if ahead else links.union(q, p)
-                if u is None or not ws.curvature_ok(u) or not ws.union_free(u):
+                if u is None or not ws.union_free(u):  # the steering limit included
                     continue
                 first, last = (q, p) if into else (p, q)
                 cost = union_longd(u)
-                search = cost * reverse_factor if direction < 0 else cost
+                search = _search_cost((u,), (direction,), cost, reverse_factor, 0.0)
                 out.append(Arc((u,), first, last, cost, into, plain_directions((direction,)), search))
     return out
 
@@ -341,30 +341,29 @@ def turn_arounds(
                 if u is not None and ws.union_free(u):
                     yield (u,), (sign,), q
 
-    more = ways()  # made as they are first needed, shared by every turn
-    starts: list = []  # the ways made so far
+    made: list = []  # the ways made so far (each made once, when first needed, for every turn)
+    more = ways()
+
+    def starts():  # the ways made, then the next ones
+        yield from made
+        for way in more:
+            made.append(way)
+            yield way
+
     out: list = []
     for share in shares:
         if not out:
-            out = _turn_arounds(links, p, R, there, more, starts, share, reverse_factor, cusp_penalty)
+            out = _turn_arounds(links, p, R, there, starts, share, reverse_factor, cusp_penalty)
     return out
 
 
-def _turn_arounds(links, p, R, there, more, starts, share, reverse_factor, cusp_penalty) -> list[Arc]:
-    """:func:`turn_arounds` with legs driving ``share`` of their free unions; ``starts`` the
-    ways to start from made so far, ``more`` the generator of the rest."""
+def _turn_arounds(links, p, R, there, starts, share, reverse_factor, cusp_penalty) -> list[Arc]:
+    """:func:`turn_arounds` with legs driving ``share`` of their free unions; ``starts()``
+    yields the ways to start from, the nearest first."""
     out = []
     for turn in (1, -1):
         for first in (1, -1):
-            k = 0
-            while True:
-                if k == len(starts):
-                    way = next(more, None)
-                    if way is None:
-                        break
-                    starts.append(way)
-                lead, lead_dirs, p0 = starts[k]
-                k += 1
+            for lead, lead_dirs, p0 in starts():
                 arc = _turn(links, p0, R, turn, first, there, share)
                 if arc is None:
                     continue
