@@ -183,6 +183,22 @@ def test_cusps_move_where_the_search_cost_drops_and_the_plan_stays_valid(monkeyp
     assert len(polished.cusps) == len(kept.cusps) >= 1
     assert weighted_cost(polished, 1.25, cp) < weighted_cost(kept, 1.25, cp) - 0.1
     assert polished.cost == pytest.approx(sum(union_longd(u) for u in polished.unions), rel=1e-9)
+    calls = []  # (plan in, plan out, moves) of every call the pipeline makes
+
+    def record(plan, *args, **kw):
+        out = polish_cusps(plan, *args, **kw)
+        calls.append((plan, *out))
+        return out
+
+    monkeypatch.setattr(default, "polish_cusps", record)
+    segplan.plan_scenario(sc)
+    segplan.plan_scenario(rs.with_reverse(rf.reverse_floor("bay-out", 70)))  # its links were rebuilt once
+    assert any(taken for _, _, taken in calls)
+    for before, after, taken in calls:
+        moved = {i for i, (p, q) in enumerate(zip(after.nodes, before.nodes, strict=True)) if p != q}
+        assert moved <= set(before.cusps) and bool(moved) == bool(taken)
+        for k, u in enumerate(after.unions):  # a link whose nodes stayed keeps its union
+            assert ({k, k + 1} & moved) or u is before.unions[k]
     # a plan without cusps is returned as it is
     plain = segplan.load_scenario("single_obstacle")
     forward = segplan.plan_scenario(plain)

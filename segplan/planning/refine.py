@@ -505,10 +505,11 @@ def polish_cusps(
                 step *= 0.5
     if not taken:
         return plan, 0
-    unions = []
+    unions = list(plan.unions)  # a link whose nodes stayed keeps its (checked) union
     for k in range(len(dirs)):
-        a, b = (nodes[k], nodes[k + 1]) if dirs[k] > 0 else (nodes[k + 1], nodes[k])
-        unions.append(r.known[(a, b)][0] if (a, b) in r.known else r.links.union(a, b))
+        if (nodes[k], nodes[k + 1]) != (plan.nodes[k], plan.nodes[k + 1]):
+            a, b = (nodes[k], nodes[k + 1]) if dirs[k] > 0 else (nodes[k + 1], nodes[k])
+            unions[k] = r.known[(a, b)][0]  # checked free by the move that put the node there
     kinds = list(plan.kinds)
     for i in cusps:
         kinds[i] = "refined" if nodes[i] != plan.nodes[i] else kinds[i]
