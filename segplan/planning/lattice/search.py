@@ -30,9 +30,10 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
 * **Reverse** (a robot that may reverse, issue 26: :mod:`~segplan.planning.lattice.reverse`):
   reverse links in the A*, its costs ``reverse_factor`` and ``cusp_penalty``; the shortcuts
   work within each run of one direction, so the cusps stay where the search put them. Its
-  escapes also drive the tight arcs backwards and add hops (single unions either way to
-  poses off the lattice's headings), probed with :data:`PROBE_EXPANSIONS` first, the
-  cheapest plan of them kept (:func:`_escape`).
+  search is staged (:func:`_quick_then_escape`: :data:`QUICK_EXPANSIONS` first, then the
+  escapes, then the rest); its escapes also drive the tight arcs backwards and add hops
+  (single unions either way to poses off the lattice's headings) and turn-arounds, probed
+  with :data:`PROBE_EXPANSIONS` first, the cheapest plan of them kept (:func:`_escape`).
 
 :func:`plan_lattice` returns a :class:`segplan.planning.plan.Plan` (``version="lattice"``);
 :func:`segplan.plan_scenario` calls it (``planner="lattice"``, the default) and refines the plan
@@ -437,6 +438,12 @@ def _dead_end(proofs: list) -> str | None:
     )
 
 
+def _reverse_costs(options: dict, scenario) -> tuple[float, float]:
+    """``(reverse_factor, cusp_penalty in metres)`` of the checked ``options`` (the penalty is
+    given in units of ``L``)."""
+    return options["reverse_factor"], options["cusp_penalty"] * scenario.robot.L
+
+
 #: The expansions of a probing search between a reversing robot's escape pairs
 #: (:func:`_escape`). Set by hand from dead-end-010 (its one-cusp escapes took 37-160
 #: expansions, its three-cusp ones 400-1900; ``segplan.studies.reverse_floors``), not tuned.
@@ -474,9 +481,8 @@ def _escape(
     cheapest plan (search cost) is returned. A forward robot's escapes return
     the first plan, as before.
     """
-    rf = options["reverse_factor"]
-    cp = options["cusp_penalty"] * scenario.robot.L
-    pairs = arc_pairs(scenario, links, exc.escapable, rf, cp)[: schedule.max_escapes]
+    pairs = arc_pairs(scenario, links, exc.escapable, *_reverse_costs(options, scenario))
+    pairs = pairs[: schedule.max_escapes]
     used = exc.expanded
     tries = 0
     cut = None  # the limit that stopped the tries, if one did
@@ -541,8 +547,8 @@ def _escape(
 
 
 #: The expansions of a reversing robot's first, quick lattice search (:func:`_quick_then_escape`).
-#: Set by hand: the reverse study's bay-out, reverse-park and dead-end floors are planned in
-#: about 0.1 s (median; ``benchmarks/reverse_floors.py``), a few thousand expansions, and its
+#: Set by hand: the reverse study's bay-out, reverse-park and dead-end floors took at most 784
+#: expansions (every fourth floor, 75 in all; ``segplan.studies.reverse_floors``), and its
 #: k-turns took 1-3 s or failed at the time limit; not tuned.
 QUICK_EXPANSIONS = 1000
 
@@ -657,8 +663,8 @@ def lattice_search(
     if escapes:
         plan = improve_with_arcs(scenario, links, plan, t0, deadline, schedule)
         if alternatives is not None and scenario.robot.reverse:
-            rf, cp = options["reverse_factor"], options["cusp_penalty"] * scenario.robot.L
-            better = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, rf, cp)
+            costs = _reverse_costs(options, scenario)
+            better = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, *costs)
             if better is not plan:
                 alternatives.append(better)
     return plan, links
