@@ -55,6 +55,7 @@ validator) and enlarged by :func:`segplan.floor.geometry.enlarge_polygon`. Rando
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 from collections.abc import Sequence
@@ -65,6 +66,7 @@ from pathlib import Path
 import numpy as np
 
 from ..model.pose import Pose, as_pose, check_length, show_pose
+from .body import RectangleBody
 from .geometry import (
     DEFAULT_MAX_ARC,
     check_bounds,
@@ -280,13 +282,28 @@ class Scenario:
         xmin, ymin, xmax, ymax = self.bounds
         return (xmin + r, ymin + r, xmax - r, ymax - r)
 
+    @functools.cached_property
+    def body(self) -> RectangleBody | None:
+        """The exact tests of a rectangular body (``robot.rectangle`` and ``half_width > 0``)
+        among the raw obstacles and walls (:class:`segplan.floor.body.RectangleBody`), or
+        None: the round body, tested through the enlarged obstacles."""
+        r = self.robot
+        if not (r.rectangle and r.half_width > 0.0):
+            return None
+        return RectangleBody(
+            self.obstacles, r.half_width, self.bounds, r.L, r.rear_overhang, r.front_overhang
+        )
+
     def pose_conflict(self, pose) -> str | None:
         """Why ``pose`` is not free (``"obstacles[i]"`` or ``"bounds"``), or None if it is free.
 
         Uses :func:`segplan.floor.geometry.pose_conflict`, the planner's own test (separating
         axes; touching, within the relative tolerance ``TOUCH_RTOL`` = 1e-9, counts), so a
-        scenario that loads has a start and goal the planner accepts.
+        scenario that loads has a start and goal the planner accepts. A rectangular body:
+        the rectangle itself against the raw obstacles and walls (:attr:`body`).
         """
+        if self.body is not None:
+            return self.body.pose_conflict(pose)
         r = self.robot
         return pose_conflict(
             pose, r.L, self.enlarged, self.free_bounds, rear=r.rear_overhang, front=r.front_overhang
@@ -422,6 +439,11 @@ class PreparedFloor:
         )  # fmt: skip
         for label, pose in (("start", start_p), ("goal", goal_p)):
             conflict = sc.pose_conflict(pose)
+            if conflict == "bounds" and sc.body is not None:
+                raise ScenarioError(
+                    f"{source}: {label} pose {_show(pose)} is out of bounds: its {_segment(robot)} "
+                    f"must lie strictly inside the bounds {list(sc.bounds)}"
+                )
             if conflict == "bounds":
                 raise ScenarioError(
                     f"{source}: {label} pose {_show(pose)} is out of bounds: its {_segment(robot)} "
@@ -431,9 +453,10 @@ class PreparedFloor:
             if conflict is not None:
                 conflict = floor.describe(int(conflict[len("obstacles[") : -1]))  # the obstacle as given
                 raise ScenarioError(
-                    f"{source}: {label} pose {_show(pose)} collides with {conflict} "
-                    f"enlarged by half_width={robot.half_width} ({_segment(robot)})"
-                )
+                    f"{source}: {label} pose {_show(pose)} collides with {conflict}"
+                    + (f" ({_segment(robot)})" if sc.body is not None else
+                       f" enlarged by half_width={robot.half_width} ({_segment(robot)})")
+                )  # fmt: skip
         return sc
 
 
@@ -506,7 +529,10 @@ def _show(p: Pose) -> str:
 
 
 def _segment(robot: Robot) -> str:
-    """The checked segment in words, for error messages."""
+    """The checked segment (or rectangular body) in words, for error messages."""
+    if robot.rectangle and robot.half_width > 0.0:
+        text = f"rectangular body [{-robot.rear_overhang:g}, {robot.L + robot.front_overhang:g}] x "
+        return text + f"[{-robot.half_width:g}, {robot.half_width:g}] (L={robot.L})"
     text = f"segment of length L={robot.L}"
     if robot.front_overhang or robot.rear_overhang:
         text += f" with overhangs front_overhang={robot.front_overhang}, rear_overhang={robot.rear_overhang}"

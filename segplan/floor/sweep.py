@@ -254,12 +254,15 @@ class Sweep:
         H = poly.offsets - poly.normals @ p0
         return V, N, H
 
-    def bend(self, s_lo, s_hi) -> np.ndarray:
+    def bend(self, s_lo, s_hi, reach: float | None = None) -> np.ndarray:
         """Bound on ``|P''(x)|`` (x units) over each ``[s_lo, s_hi]``, for every point ``P``
-        of the segment (``P = A + t u``, ``t0 <= t <= t1``; ``|P''| <= |A''| + reach |u''|``)."""
+        of the segment (``P = A + t u``, ``t0 <= t <= t1``; ``|P''| <= |A''| + reach |u''|``).
+
+        ``reach``: another bound of the points' distance from A (default :attr:`reach`); the
+        rectangular body's farthest corner (:mod:`segplan.floor.body`)."""
         c2, c3, X = self.c2, self.c3, self.X
         f2 = np.maximum(np.abs(2.0 * c2 + 6.0 * c3 * X * s_lo), np.abs(2.0 * c2 + 6.0 * c3 * X * s_hi))
-        return f2 + self.reach * (6.0 * abs(c3) + _THETA2 * f2 * f2)
+        return f2 + (self.reach if reach is None else reach) * (6.0 * abs(c3) + _THETA2 * f2 * f2)
 
     def grid(self) -> _Grid:
         """Positions, hull axes and chord bounds of the level-0 sweep (cached)."""

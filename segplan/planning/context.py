@@ -24,11 +24,12 @@ __all__ = ["Deadline", "PlanningContext", "Progress", "workspace_of"]
 
 def workspace_of(scenario: Scenario) -> Workspace:
     """The validity checker of a scenario: its enlarged obstacles, the robot's length,
-    overhangs and steering limit, the walls moved in by ``half_width`` (:class:`Workspace`)."""
+    overhangs and steering limit, the walls moved in by ``half_width`` (:class:`Workspace`);
+    a rectangular body's exact tests (:attr:`segplan.Scenario.body`)."""
     robot = scenario.robot
     return Workspace(
         scenario.enlarged, robot.L, scenario.free_bounds, robot.max_curvature,
-        rear=robot.rear_overhang, front=robot.front_overhang,
+        rear=robot.rear_overhang, front=robot.front_overhang, body=scenario.body,
     )  # fmt: skip
 
 

@@ -527,7 +527,8 @@ def certain_failures(
     A link fails for certain if its rear path's curvature, sampled at ``SAMPLES``
     abscissae, exceeds the steering limit, or if a sampled point of the swept segment
     (rear point, middle, front wheel) lies outside the free bounds or strictly inside an
-    enlarged obstacle (:meth:`segplan.planning.validity.Workspace.inside`). The converse
+    enlarged obstacle (:meth:`segplan.planning.validity.Workspace.inside`), deeper than
+    the workspace's ``depth`` for a rectangular body. The converse
     does not hold: a link with no certain failure must still be checked
     (:meth:`segplan.planning.validity.Workspace.union_free`).
 
@@ -559,7 +560,8 @@ def certain_failures(
     wy = np.concatenate((ry, ry + 0.5 * L * uy, ry + L * uy), axis=1)
     if ws.bounds is not None:
         xmin, ymin, xmax, ymax = ws.bounds
-        bad |= np.any((wx <= xmin) | (wx >= xmax) | (wy <= ymin) | (wy >= ymax), axis=1)
+        d = ws.depth  # 0; a rectangular body: how far beyond a moved wall is a certain failure
+        bad |= np.any((wx <= xmin - d) | (wx >= xmax + d) | (wy <= ymin - d) | (wy >= ymax + d), axis=1)
     look = ~bad if only is None else only & ~bad
     if look.any():
         bad[look] = np.any(ws.inside(wx[look], wy[look]), axis=1)

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..floor.body import RectangleBody
 from ..floor.buckets import BoxGrid
 from ..floor.collision import CollisionStats, collides, sweep_in_bounds
 from ..floor.geometry import (
@@ -79,6 +80,9 @@ class ExpansionStats:
         (:meth:`segplan.planning.links.LinkModel.prefetch`).
     curvature_exact : int
         Unions whose curvature needed :meth:`Union.max_curvature` (the cheap bound failed).
+    body_checks : int
+        Union-polygon pairs the round body touches, asked again about a rectangular body
+        (:attr:`Workspace.body`).
 
     Notes
     -----
@@ -95,6 +99,7 @@ class ExpansionStats:
     certain_hits: int = 0
     batched: int = 0
     curvature_exact: int = 0
+    body_checks: int = 0
 
     @property
     def collision_checks(self) -> int:
@@ -171,6 +176,12 @@ class Workspace:
         (:class:`segplan.floor.sweep.Sweep`, :func:`segplan.floor.geometry.axis_segment`);
         :attr:`overhang`, the larger, is the distance from A->B of its farthest point, which
         the lattice's point screens add to their covering radii. 0: the segment A->B.
+    body : segplan.floor.body.RectangleBody, optional
+        A rectangular body (:class:`segplan.Robot` with ``rectangle=True``, beyond the
+        paper): a union or pose the tests below find touching an enlarged obstacle or the
+        moved walls (the round body, which contains the rectangle) is asked again about the
+        rectangle itself against the raw obstacle or walls (:mod:`segplan.floor.body`),
+        which decides. None: the round body (the paper's, with overhangs) is the robot.
 
     Notes
     -----
@@ -184,7 +195,14 @@ class Workspace:
     2. a *certain hit*: a sample of the swept segment (rear point, front wheel and
        middle of the robot at ``HIT_SAMPLES`` positions) strictly inside the polygon;
     3. :func:`segplan.floor.collision.collides` (the paper's ``d_c`` rejection, then the exact
-       event test) on the polygons left.
+       event test) on the polygons left;
+    4. with a rectangular ``body``, on the polygons found touching: the rectangle's exact
+       sweep against the raw obstacle (:func:`segplan.floor.body.rectangle_collides`).
+
+    The screens that only *reject* with the enlarged obstacles (a point inside one, the
+    lattice's blocked cells, :meth:`inside`) stay those of the round body: for a rectangle
+    they are conservative, pessimistic by its round caps (the lattice's screens, the
+    refinement's), never wrong.
     """
 
     def __init__(
@@ -197,8 +215,18 @@ class Workspace:
         cache: bool = True,
         rear: float = 0.0,
         front: float = 0.0,
+        body: RectangleBody | None = None,
     ):
         self.convex = [ConvexPolygon(p, check=False) for p in obstacles]
+        if body is not None and len(body.convex) != len(self.convex):
+            raise ValueError(
+                f"body has {len(body.convex)} raw obstacles for {len(self.convex)} enlarged ones"
+            )
+        #: The rectangular body's exact tests (:class:`segplan.floor.body.RectangleBody`) or None.
+        self.body = body
+        #: How deep inside an enlarged obstacle or beyond a moved wall a point of A->B is a
+        #: certain collision (m): 0 for the round body, :attr:`RectangleBody.depth` for a rectangle.
+        self.depth = 0.0 if body is None else body.depth
         self.rear, self.front = float(rear), float(front)
         #: The farthest a point of the checked segment lies from A->B (m; 0 without overhangs).
         self.overhang = max(self.rear, self.front)
@@ -260,6 +288,8 @@ class Workspace:
         ``TOUCH_RTOL``) in scalar arithmetic: the same decisions, faster for a handful of
         polygons (checked by ``tests/test_fast_paths.py``).
         """
+        if self.body is not None:  # the rectangle itself (a pose test is cheap)
+            return self.body.pose_conflict(pose) is None
         x, y, dx, dy, L = axis_segment(*pose, self.L, self.rear, self.front)
         if self.bounds is not None:
             tol = bounds_tolerance(x, y, L, self.bounds)
@@ -358,7 +388,10 @@ class Workspace:
             return True
         f = self.facts(u)
         if f.in_bounds is None:
-            f.in_bounds = sweep_in_bounds(self.sweep(u), self.bounds)
+            sw = self.sweep(u)
+            f.in_bounds = sweep_in_bounds(sw, self.bounds) or (
+                self.body is not None and self.body.in_bounds(sw)
+            )
         return f.in_bounds
 
     def _samples(self, sw: Sweep) -> tuple[np.ndarray, np.ndarray]:
@@ -370,11 +403,12 @@ class Workspace:
         return sw.x0 + sw.cos * fr - sw.sin * fy, sw.y0 + sw.sin * fr + sw.cos * fy
 
     def inside(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        """Which points lie strictly inside an obstacle (vectorised).
+        """Which points lie strictly inside an obstacle, deeper than :attr:`depth` (vectorised).
 
         Each point against the obstacles filed under its cell (:attr:`index`: every one
         whose bounding box holds it; up to ``VECTOR_SCREEN_MIN`` obstacles, against every
-        one): strictly inside the box, then strictly inside every edge (``n . p - h < 0``).
+        one): strictly inside the box, then strictly inside every edge by more than the
+        depth (``n . p - h < -depth``; 0 for the round body).
 
         Parameters
         ----------
@@ -400,7 +434,7 @@ class Workspace:
             px, py = px[p], py[p]
         N = self._normal_array[i]
         g = px[:, None] * N[:, :, 0] + py[:, None] * N[:, :, 1] - self._offset_array[i]
-        out[p[np.all(g < 0.0, axis=1)]] = True
+        out[p[np.all(g < -self.depth, axis=1)]] = True
         return out.reshape(x.shape)
 
     def _certain_hit(self, wx: np.ndarray, wy: np.ndarray, i: int) -> bool:
@@ -479,6 +513,9 @@ class Workspace:
                 else:
                     self.stats.exact_checks += 1
                     hit = collides(sw, self.convex[i], check=False, stats=self.collision_stats)
+                if hit and self.body is not None:  # the round body touches: the rectangle?
+                    self.stats.body_checks += 1
+                    hit = self.body.collides(sw, i)
                 hits[i] = hit
             if hit:
                 out.append(int(i))

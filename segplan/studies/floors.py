@@ -50,6 +50,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..floor.body import RectangleBody
 from ..floor.geometry import axis_segment, enlarge_polygon, pose_collides, pose_in_bounds
 from ..floor.random_floors import place_disjoint
 from ..floor.scenario import Robot, Scenario, load_scenario, make_scenario
@@ -152,7 +153,8 @@ def _place_obstacles(rng: np.random.Generator, n: int, bounds) -> list[np.ndarra
 class _FreeTest:
     """Is a pose free among the enlarged obstacles and inside the shrunk walls? (the
     scenario's own tests, :meth:`segplan.Scenario.is_free`, before the scenario exists; the
-    robot's axis segment with its overhangs, :attr:`segplan.Robot.axis`)."""
+    robot's axis segment with its overhangs, :attr:`segplan.Robot.axis`; a rectangular
+    body, :attr:`segplan.Scenario.body`)."""
 
     def __init__(self, obstacles, bounds, robot: Robot):
         r = robot.half_width
@@ -160,8 +162,14 @@ class _FreeTest:
         self.free_bounds = (bounds[0] + r, bounds[1] + r, bounds[2] - r, bounds[3] - r)
         self.polys = [enlarge_polygon(p, r) for p in obstacles]
         self.boxes = np.array([(*p.min(axis=0), *p.max(axis=0)) for p in self.polys]).reshape(-1, 4)
+        self.rectangle = (
+            RectangleBody(obstacles, r, bounds, robot.L, robot.rear_overhang, robot.front_overhang)
+            if robot.rectangle and r > 0.0 else None
+        )  # fmt: skip
 
     def __call__(self, pose) -> bool:
+        if self.rectangle is not None:  # a rectangular body: the rectangle itself
+            return self.rectangle.pose_conflict(pose) is None
         if not pose_in_bounds(pose, self.L, self.free_bounds, **self.body):
             return False
         x, y, dx, dy, _ = axis_segment(*pose, self.L, self.body["rear"], self.body["front"])

@@ -186,7 +186,8 @@ class SegmentValidity:
     them) by more than ``margin`` is in bounds (out of bounds), so neither is asked.
     ``margin`` is a thousandth of the scene's size, a million times the collision
     module's touching tolerance: the answers are those of :meth:`segplan.Scenario.is_free`
-    (tested), only cheaper. ``calls`` counts the queries.
+    (tested), only cheaper. A rectangular body (:attr:`segplan.Scenario.body`): a pose the
+    round body fails is asked of the rectangle itself. ``calls`` counts the queries.
 
     Parameters
     ----------
@@ -198,6 +199,7 @@ class SegmentValidity:
             raise ValueError(f"scenario must be a segplan.Scenario, got {type(scenario).__name__}")
         r = scenario.robot
         self.L, self.body = r.L, {"rear": r.rear_overhang, "front": r.front_overhang}
+        self._rectangle = scenario.body  # a rectangular body's exact test, or None
         self.bounds = scenario.free_bounds
         self.polygons = [as_polygon(p) for p in scenario.enlarged]
         extent = (
@@ -223,6 +225,12 @@ class SegmentValidity:
 
     def __call__(self, x: float, y: float, theta: float) -> bool:
         self.calls += 1
+        if self._round_free(x, y, theta):
+            return True
+        # the round body touches: a rectangular body is asked itself (Scenario.is_free's test)
+        return self._rectangle is not None and self._rectangle.pose_conflict((x, y, theta)) is None
+
+    def _round_free(self, x: float, y: float, theta: float) -> bool:
         L, body = self.L, self.body
         ax, ay, dx, dy, _ = axis_segment(x, y, theta, L, body["rear"], body["front"])
         bx, by = ax + dx, ay + dy

@@ -35,8 +35,9 @@ returns a :class:`PathMetrics`:
   ``scenario.free_bounds``; :func:`measure_scenario_path` does). Because the enlarged
   polygons contain the exact Minkowski sum (:func:`segplan.floor.geometry.enlarge_polygon`), the
   real gap between the robot's body and the raw obstacles is at least this, and at most
-  this plus the enlargement's excess (``0.0824 half_width`` by default). Negative means
-  a sample lies outside the walls;
+  this plus the enlargement's excess (``0.0824 half_width`` by default). A rectangular
+  body (``rectangle=w``): the rectangle itself against the raw obstacles and walls, the
+  real gap. Negative means a sample lies outside the walls;
 - ``collides``: the dense collision oracle. True if the segment of any sample touches a
   polygon (shapely ``intersects``: touching counts, as in :mod:`segplan.floor.collision`) or
   is not strictly inside the walls. It knows nothing of segplan's collision module (an
@@ -153,6 +154,7 @@ def measure_path(
     jump_tol: float | None = None,
     rear: float = 0.0,
     front: float = 0.0,
+    rectangle: float | None = None,
 ) -> PathMetrics:
     """Measure a path of the segment robot (module docstring).
 
@@ -177,6 +179,12 @@ def measure_path(
         The robot's overhangs (:class:`segplan.Robot`; >= 0): the ``clearance`` and
         ``collides`` are of the axis segment from ``A - rear u`` to ``B + front u``, the
         segment the planner checks (the lengths stay those of A and B).
+    rectangle : float, optional
+        A rectangular body's half-width ``w`` (:class:`segplan.Robot` with
+        ``rectangle=True``): the ``clearance`` and ``collides`` are then of the rectangle
+        ``[-rear, L + front] x [-w, w]`` at every pose, against ``polygons`` and ``bounds``
+        given *raw* (not enlarged, not shrunk): the body the planner's exact rectangle test
+        decides (:mod:`segplan.floor.body`). None (default): the segment.
 
     Returns
     -------
@@ -211,7 +219,15 @@ def measure_path(
 
     U = np.column_stack((np.cos(theta), np.sin(theta)))
     R, F = (A, B) if rear == front == 0.0 else (A - rear * U, A + (L + front) * U)  # the checked segment
-    lines = shapely.linestrings(np.stack((R, F), axis=1))
+    if rectangle is None:
+        lines = shapely.linestrings(np.stack((R, F), axis=1))
+        ends = np.concatenate((R, F))
+    else:  # the rectangle: its corners R -+ w n, F -+ w n (n = the heading turned left)
+        w = finite_number(rectangle, "rectangle", 0.0)
+        Nw = w * np.column_stack((-U[:, 1], U[:, 0]))
+        corners = np.stack((R - Nw, F - Nw, F + Nw, R + Nw), axis=1)
+        lines = shapely.polygons(corners)
+        ends = corners.reshape(-1, 2)
     clearance = math.inf
     collides = False
     polys = [shapely.Polygon(np.asarray(p, dtype=float)) for p in polygons]
@@ -222,8 +238,8 @@ def measure_path(
         clearance = float(np.min(shapely.distance(lines, obstacles)))
     if b is not None:
         xmin, ymin, xmax, ymax = b
-        # distance of a segment inside an axis-aligned box to its walls is attained at an end point
-        ends = np.concatenate((R, F))
+        # distance of a segment (a convex body) inside an axis-aligned box to its walls is
+        # attained at an end point (a corner)
         walls = np.minimum.reduce(
             (ends[:, 0] - xmin, xmax - ends[:, 0], ends[:, 1] - ymin, ymax - ends[:, 1])
         )
@@ -246,8 +262,14 @@ def measure_path(
 
 def measure_scenario_path(poses, scenario, *, jump_tol: float | None = None) -> PathMetrics:
     """:func:`measure_path` in a :class:`segplan.Scenario`: its enlarged obstacles and free bounds,
-    its robot's overhangs."""
+    its robot's overhangs; a rectangular body (:attr:`segplan.Scenario.body`): the rectangle
+    among the raw obstacles and walls."""
     r = scenario.robot
+    if scenario.body is not None:
+        return measure_path(
+            poses, r.L, scenario.obstacles, scenario.bounds, jump_tol=jump_tol,
+            rear=r.rear_overhang, front=r.front_overhang, rectangle=r.half_width,
+        )  # fmt: skip
     return measure_path(
         poses, r.L, scenario.enlarged, scenario.free_bounds, jump_tol=jump_tol,
         rear=r.rear_overhang, front=r.front_overhang,
@@ -259,9 +281,9 @@ def plan_clearance(plan, scenario, step: float = DEFAULT_STEP) -> float:
 
     The ``clearance`` of :func:`measure_scenario_path` on :func:`plan_poses` (module docstring):
     measured in the planning model (obstacles enlarged by ``half_width``, walls moved in as
-    much), so the real gap between the robot's body and the raw obstacles is at least this.
-    Sampled every ``step`` m or less: it overestimates the continuous clearance by at most
-    about ``step / 2``. Negative: the plan leaves the walls.
+    much), so the real gap between the robot's body and the raw obstacles is at least this
+    (a rectangular body: that gap itself). Sampled every ``step`` m or less: it overestimates
+    the continuous clearance by at most about ``step / 2``. Negative: the plan leaves the walls.
 
     Parameters
     ----------

@@ -65,6 +65,10 @@ class ClearanceGrid:
         subtracted from every lower bound, so that the screens of points of the segment
         A->B (the primitives' points, :func:`union_points`) stay conservative for the
         longer checked segment, each of whose points lies within ``overhang`` of A->B.
+    depth : float
+        How deep inside an obstacle (or beyond a wall) a point of A->B is a certain
+        collision (:attr:`segplan.planning.validity.Workspace.depth`): 0 for the round body;
+        a rectangular body's cells are blocked only that much deeper.
 
     Notes
     -----
@@ -76,12 +80,21 @@ class ClearanceGrid:
     the nearest occupied cell, here bounded from below by the larger of its chessboard
     distance and its taxicab distance over ``sqrt(2)``
     (:func:`scipy.ndimage.distance_transform_cdt`). A cell is
-    *blocked* when its centre lies deeper than ``h`` inside an obstacle or beyond a wall:
-    the whole square is, and the robot's segment cannot touch it.
+    *blocked* when its centre lies deeper than ``h + depth`` inside an obstacle or beyond a
+    wall: the whole square lies deeper than ``depth``, and the robot's segment cannot touch it.
     """
 
     def __init__(
-        self, convex, frame, bounds, cell: float, pad: int, goal, margin: float, overhang: float = 0.0
+        self,
+        convex,
+        frame,
+        bounds,
+        cell: float,
+        pad: int,
+        goal,
+        margin: float,
+        overhang: float = 0.0,
+        depth: float = 0.0,
     ):
         sx, sy, th = (float(v) for v in frame)
         c, s = math.cos(th), math.sin(th)
@@ -115,7 +128,7 @@ class ClearanceGrid:
             # others) and by more than -h (blocked: the others) form an interval of cy; the
             # margins 1e-9 keep both conservative against rounding
             occ |= ~self._inside_walls(cx, cy, bounds, h + 1e-9)
-            blocked |= ~self._inside_walls(cx, cy, bounds, -h - 1e-9)
+            blocked |= ~self._inside_walls(cx, cy, bounds, -h - 1e-9 - depth)
         for v in polys:
             poly = ConvexPolygon(v, check=False)
             a = np.floor((v.min(axis=0) - 2 * h) / g).astype(int) - (self.i0, self.j0)
@@ -128,7 +141,7 @@ class ClearanceGrid:
             py = cy[None, j0:j1, None]
             sd = np.max(px * poly.normals[:, 0] + py * poly.normals[:, 1] - poly.offsets, axis=-1)
             occ[i0:i1, j0:j1] |= sd <= h
-            blocked[i0:i1, j0:j1] |= sd < -h
+            blocked[i0:i1, j0:j1] |= sd < -h - depth
         if occ.any():
             # a lower bound of the Euclidean distance transform at a third of its cost: the
             # chessboard and the taxicab distances over sqrt(2) never exceed it (nearly equal
@@ -356,7 +369,8 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
     ``screen``, first the signed distances of the points to the edge lines of the
     obstacles near them (their largest over the edges, a lower bound of the distance to a
     convex polygon) and to the walls: all above ``delta``, free; a point strictly inside an
-    obstacle or beyond a wall, not free. Otherwise the package's certified test (walls by
+    obstacle or beyond a wall (by more than ``ws.depth``: a rectangular body), not free.
+    Otherwise the package's certified test (walls by
     :meth:`~segplan.planning.validity.Workspace.in_bounds`, then
     :meth:`~segplan.planning.validity.Workspace.colliding` on the obstacles near the points).
     ``u`` may be a function without arguments that returns the union (called only then).
@@ -374,14 +388,14 @@ def union_free_near(ws, u, pts: np.ndarray, delta: float, screen: bool = True) -
             sd = poly.normals @ rows
             sd -= poly.offsets[:, None]
             m = float(sd.max(axis=0).min())
-            if m < 0.0:
+            if m < -ws.depth:  # a point inside (deeper than a rectangular body's depth)
                 return False, 0
             lb = min(lb, m)
         b = ws.bounds
         if b is not None:
             w = min(xlo - b[0], b[2] - xhi)
             w = min(w, ylo - b[1], b[3] - yhi)
-            if w <= 0.0:
+            if w <= -ws.depth:
                 return False, 0
             lb = min(lb, w)
         if lb > delta:

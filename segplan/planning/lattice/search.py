@@ -254,6 +254,7 @@ def lattice_floor(scenario, ws: Workspace, tries: list[float], cell: float, sche
         scenario.goal,
         schedule.margin(L, R),
         ws.overhang,
+        ws.depth,
     )
     gl = grid.to_lattice(np.array([scenario.goal[:2]]))[0]
     field = DistanceField(grid, gl, max(cell, 0.25 * L, math.sqrt((grid.nx * grid.ny) / 5e4) * cell))
