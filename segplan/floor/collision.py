@@ -103,12 +103,14 @@ means the *rounded body* ``S(x) + disk(w)`` (the points within ``w`` of the axis
 the paper's "curved rectangle" when ``r = f = 0``) misses the obstacle itself, and this
 test is exact for that body (up to the enlargement's polygonal excess, conservative). A
 rectangular body ``[-r, L + f] x [-w, w]`` (``Robot(rectangle=True)``) lies inside the
-rounded one: the test is conservative for it, pessimistic only where an obstacle enters
+rounded one: this test is conservative for it, pessimistic only where an obstacle enters
 the two half-discs beyond its ends (``tests/test_footprint_collision.py`` proves the
 absence of misses against a dense shapely oracle of the rectangle and measures how often
 it is pessimistic). No tighter body of the form "segment plus disk" contains the
 rectangle, and the enlargement by a disk is what keeps it off-line: the rectangle's own
-Minkowski sum with an obstacle turns with the robot.
+Minkowski sum with an obstacle turns with the robot. So the planner asks the rectangle
+itself, against the raw obstacle, only where this test finds the rounded body touching
+(:mod:`segplan.floor.body`: the same certified sweep, for the segment's parallel offsets).
 
 Tolerance. Contacts are decided with a tiny conservative tolerance
 ``tol = TOUCH_RTOL * (L + X + r_max + |c| + |p0|)`` (``|c|``: distance of the polygon's

@@ -140,10 +140,9 @@ class Robot:
         ``half_width`` of that axis segment, a rectangle with round ends (today's robot,
         the paper's "curved rectangle" when the overhangs are 0), which the planner's test
         sweeps exactly; True, the rectangle ``[-rear_overhang, L + front_overhang] x
-        [-half_width, half_width]`` of the robot's frame, which the rounded body contains
-        (the tightest body of the form "segment enlarged by a disk", the only one the
-        off-line enlargement can serve): the planner's test is then conservative, and
-        pessimistic only by the two round caps beyond its ends.
+        [-half_width, half_width]`` of the robot's frame, which the rounded body contains:
+        where the rounded body touches an obstacle or a wall, the rectangle itself is swept
+        against the raw one (:mod:`segplan.floor.body`, exact up to the touching tolerance).
     reverse : bool
         May the robot drive backwards (beyond the paper, issue 26)? False: the paper's
         forward-only AGV. True: the default planner may also traverse a union backwards
