@@ -367,7 +367,14 @@ class LatticeOptions:
         and the least CPU time (largest per plan 2.1-2.4 s, the K-turns, against 3.5-7.0
         s); of those, 1.25 the least (median 0.034 s, largest 2.06 s; 1.5 the same
         lengths; 1, free reversing, 0.8 % longer and a fifth of the length driven
-        backwards). The bay: 11.85 m, one cusp.
+        backwards). The bay: 11.85 m, one cusp. Walked again on 2026-12-03 over the
+        reverse study's 400 floors (``benchmarks/reverse_costs.py``: pairs compared on the
+        even floors of each kind, the best checked on the odd ones, lengths against OMPL's
+        Reeds-Shepp BIT*): ``reverse_factor`` 1 or 1.1 made dead-ends longer (worst 1.22-1.25
+        against 1.20), 1.5 bay-outs and K-turns (worst 1.29, 1.33); with 1.25, ``cusp_penalty``
+        0.25 shortened the worst even K-turn (1.39 to 1.25) and changed nothing else beyond
+        1 % (odd floors: the same success, cusps and worst, 1.38), but generated 23 % more
+        states on the bay (757 against 615); 0.1 and 0 no shorter. Kept.
     cusp_penalty : float
         A robot that may reverse: the cost of each change of direction, units of ``L``
         (>= 0), in the search and when the default planner compares its plans. 0.5: see

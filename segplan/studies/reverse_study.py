@@ -51,12 +51,17 @@ def run_segplan(
     n: int = rf.N_PER_KIND,
     options: dict | None = None,
     progress=None,
+    indices: Sequence[int] | None = None,
 ) -> pd.DataFrame:
-    """segplan with reverse gear on the first ``n`` floors of each of ``kinds``: the rows of
-    :func:`segplan.studies.robustness.run_segplan` with ``cusps`` (changes of direction of
-    the plan; NaN without one) and ``floor_key`` the forward-only floor's (the key of OMPL's
-    input, so that :func:`compare` matches the stored runs)."""
-    floors = [(k, sc) for k in kinds for sc in rf.reverse_floors(k, n)]
+    """segplan with reverse gear on the first ``n`` floors of each of ``kinds`` (or the floors
+    ``indices`` of each): the rows of :func:`segplan.studies.robustness.run_segplan` with
+    ``cusps`` (changes of direction of the plan; NaN without one) and ``floor_key`` the
+    forward-only floor's (the key of OMPL's input, so that :func:`compare` matches the
+    stored runs)."""
+    if indices is None:
+        floors = [(k, sc) for k in kinds for sc in rf.reverse_floors(k, n)]
+    else:
+        floors = [(k, rf.reverse_floor(k, int(i))) for k in kinds for i in indices]
     table, plans = rb.run_segplan([(k, with_reverse(sc)) for k, sc in floors], options, progress)
     table["floor_key"] = [floor_key(sc) for _, sc in floors]
     table["cusps"] = [math.nan if plans[sc.name] is None else len(plans[sc.name].cusps) for _, sc in floors]
