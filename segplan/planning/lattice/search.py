@@ -592,7 +592,10 @@ LOOP_TURN = 0.75 * math.pi
 #: reference): 11 plans changed, every one shorter (warehouse worst 2.07 to 1.22 times
 #: BIT*'s); 4 tries of 256 expansions cost 150-550 ms more on those floors, 2 tries 50-300 ms
 #: and kept all but one gain (rooms-055, already 0.94 times BIT*'s), 128 expansions lost
-#: warehouse-061's (back to 1.83).
+#: warehouse-061's (back to 1.83). With 2 tries the repair ran on 15 of the 100 warehouse and
+#: 16 of the 100 rooms floors and shortened 5 and 6 of them; where it found nothing it cost
+#: 5-430 ms (the price of the gains; the Dubins gap does not tell the two apart, nor does the
+#: distance field's bound, which is weaker than Dubins' on these floors).
 LOOP_TRIES = 2
 LOOP_EXPANSIONS = 256
 
