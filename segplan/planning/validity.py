@@ -199,10 +199,11 @@ class Workspace:
     4. with a rectangular ``body``, on the polygons found touching: the rectangle's exact
        sweep against the raw obstacle (:func:`segplan.floor.body.rectangle_collides`).
 
-    The screens that only *reject* with the enlarged obstacles (a point inside one, the
-    lattice's blocked cells, :meth:`inside`) stay those of the round body: for a rectangle
-    they are conservative, pessimistic by its round caps (the lattice's screens, the
-    refinement's), never wrong.
+    The screens that only *reject* with the enlarged obstacles (a point of A->B inside one or
+    beyond a moved wall, the lattice's blocked cells, :meth:`inside`) reject a point only
+    deeper than :attr:`depth`: 0 for the round body; for a rectangle the depth at which the
+    rectangle itself must touch (:attr:`segplan.floor.body.RectangleBody.depth`), so they
+    stay sound for it.
     """
 
     def __init__(
