@@ -19,14 +19,13 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_collision import N_DENSE, hull, ngon, random_union, tangent_box
-from test_footprint_collision import _planner_says, bodies, random_overhangs
+from test_footprint_collision import _planner_says, bodies, chord_unions, random_overhangs
 
 import segplan
 from segplan import Union
 from segplan.floor import body as bd
 from segplan.floor import geometry as geo
 from segplan.floor import sweep as swp
-from segplan.model.pose import alpha_interval
 
 #: A reported collision the dense oracle does not see must come this close (m): the
 #: touching tolerance is ~1e-9 of a scene of tens of metres, the refined sampling's own
@@ -159,11 +158,7 @@ def test_rectangle_sweep_exact(cases):
 
 @settings(max_examples=150, deadline=None)
 @given(
-    L=st.floats(0.3, 3.0),
-    ratio=st.floats(2.0, 10.0),
-    phi0=st.floats(-1.2, 1.2),
-    phi1=st.floats(-1.2, 1.2),
-    frac=st.floats(0.05, 0.95),
+    u=chord_unions(),
     w=st.floats(0.01, 0.6),
     rear=st.floats(0.0, 1.0),
     front=st.floats(0.0, 1.0),
@@ -174,14 +169,8 @@ def test_rectangle_sweep_exact(cases):
     k=st.integers(3, 7),
     phase=st.floats(0.0, 6.3),
 )
-def test_rectangle_sweep_never_misses_hypothesis(
-    L, ratio, phi0, phi1, frac, w, rear, front, x_frac, corner, offset, size, k, phase
-):
-    lo, hi = alpha_interval(phi0, phi1)
-    alpha = lo + frac * (hi - lo)
-    if not lo < alpha < hi:
-        return
-    u = Union((0.0, 0.0, phi0), (ratio * L, 0.0, phi1), alpha, L)
+def test_rectangle_sweep_never_misses_hypothesis(u, w, rear, front, x_frac, corner, offset, size, k, phase):
+    L = u.L
     robot = segplan.Robot(L, w * L, front_overhang=front * L, rear_overhang=rear * L, rectangle=True)
     C = corner_paths(robot, u, [x_frac * u.x_end])[0]
     poly = ngon(C[corner] + 0.5 * L * np.asarray(offset), size * L, k, phase)

@@ -452,6 +452,20 @@ def _reverse_costs(options: dict, scenario) -> tuple[float, float]:
 PROBE_EXPANSIONS = 256
 
 
+def _search_between(
+    scenario, links: LinkModel, a, b, options: dict, budget: int, left: float, schedule, progress
+):
+    """One lattice search (no retry) from arc ``a``'s inner pose (or the start, ``a`` None) to
+    arc ``b``'s (or the goal), at most ``budget`` expansions and ``left`` seconds: its plan,
+    or the :class:`NoPathError` it raises (the escapes' and the loop repair's sub-search)."""
+    ends = {"start": a.inner if a else scenario.start, "goal": b.inner if b else scenario.goal}
+    inner, _ = _lattice_search(
+        replace(scenario, **ends), max_expansions=budget, time_limit=left, t0=None, links=links,
+        schedule=schedule, progress=progress, **{**options, "retry": False},
+    )  # fmt: skip
+    return inner
+
+
 def _escape(
     scenario,
     links: LinkModel,
@@ -504,19 +518,8 @@ def _escape(
                 break
             tries += 1
             budget = max_expansions - used if cap is None else min(cap, max_expansions - used)
-            ends = {"start": a.inner if a else scenario.start, "goal": b.inner if b else scenario.goal}
-            sub = replace(scenario, **ends)
             try:
-                inner, _ = _lattice_search(
-                    sub,
-                    max_expansions=budget,
-                    time_limit=left,
-                    t0=None,
-                    links=links,
-                    schedule=schedule,
-                    progress=progress,
-                    **{**options, "retry": False},
-                )
+                inner = _search_between(scenario, links, a, b, options, budget, left, schedule, progress)
             except NoPathError as e:
                 used += e.expanded
                 if cap is not None and e.reason == "expansions" and budget == cap:
@@ -628,12 +631,8 @@ def _repair_loops(
         left = deadline - time.perf_counter()
         if not est < best.cost or left <= 0:
             break
-        sub = replace(scenario, start=a.inner if a else scenario.start, goal=b.inner if b else scenario.goal)
         try:
-            inner, _ = _lattice_search(
-                sub, max_expansions=LOOP_EXPANSIONS, time_limit=left, t0=None, links=links,
-                schedule=schedule, progress=progress, **{**options, "retry": False},
-            )  # fmt: skip
+            inner = _search_between(scenario, links, a, b, options, LOOP_EXPANSIONS, left, schedule, progress)
         except NoPathError as e:
             used += e.expanded
             continue
