@@ -154,6 +154,69 @@ def test_a_turn_around_near_a_closed_end_starts_after_a_straight_move():
         assert math.hypot(lead.p1.x - lead.p0.x, lead.p1.y - lead.p0.y) / R in escape.TURN_SHIFTS
 
 
+def _arc_key(arc: escape.Arc) -> tuple:
+    return arc.first, arc.last, arc.link_directions, tuple(u.alpha for u in arc.unions)
+
+
+@pytest.mark.parametrize("index", [8, 60])
+def test_every_share_and_start_is_a_superset_and_the_budget_drops_only_dearer_turns(index):
+    """The improvement's search over the legs' lengths and the turn's position
+    (``every``): every turn-around of the first share from the nearest start is among them;
+    each is valid and within the steering limit; with a ``budget``, exactly the turns
+    through which a plan could cost at most the budget are kept (the bound:
+    ``min(1, reverse_factor)`` times LONGD and the distance to ``toward`` plus the legs'
+    cusps' penalty), the others dropped."""
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", index))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    start, goal = Pose(*sc.start), Pose(*sc.goal)
+    rf_, cp = 1.25, 0.5 * sc.robot.L
+    first = escape.turn_arounds(links, start, goal.theta, R, rf_, cp, escape.IMPROVE_SHARES[:1])
+    every = escape.turn_arounds(links, start, goal.theta, R, rf_, cp, escape.IMPROVE_SHARES, True)
+    keys = {_arc_key(a) for a in every}
+    assert first and {_arc_key(a) for a in first} <= keys
+    assert len(keys) > len(first)  # other shares and starts get there too
+    ws = links.ws
+    for arc in every:
+        assert all(ws.curvature_ok(u) and ws.union_free(u) for u in arc.unions)
+        assert abs(math.remainder(arc.last.theta - goal.theta, 2 * math.pi)) < 0.5 * escape.STEP
+        assert arc.longds is not None and math.fsum(arc.longds) == arc.cost
+
+    def bound(arc):  # the cusps of the legs (a straight move may lead in: not counted)
+        lead = arc.unions[0].p0.theta == arc.unions[0].p1.theta
+        d = arc.link_directions[1:] if lead else arc.link_directions
+        cusps = sum(a != b for a, b in zip(d[:-1], d[1:], strict=True))
+        rest = math.hypot(goal.x - arc.last.x, goal.y - arc.last.y)
+        return min(1.0, rf_) * (arc.cost + rest) + cp * cusps
+
+    budget = float(np.median([bound(a) for a in every]))
+    shares = escape.IMPROVE_SHARES
+    kept = escape.turn_arounds(links, start, goal.theta, R, rf_, cp, shares, True, budget, goal)
+    kept_keys = {_arc_key(a) for a in kept}
+    assert kept_keys <= keys
+    for arc in every:  # a turn's bound grows leg by leg: the last leg's decides
+        if bound(arc) <= budget * (1 - 1e-6):
+            assert _arc_key(arc) in kept_keys
+    assert all(bound(a) <= budget * (1 + 1e-6) for a in kept)
+    assert len(kept) < len(every)
+
+
+def test_a_reversed_turn_around_keeps_its_longds_and_its_search_cost():
+    """A goal's turn-around driven the other way (:func:`escape.reversed_arc`) reuses the
+    unions' LONGDs: its search cost is the one computed from each union's own LONGD (the
+    legs' congruent unions stand for each other) to rounding."""
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", 8))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    goal = Pose(*sc.goal)
+    for arc in escape.turn_arounds(links, goal, sc.start[2], R, 1.25, 0.5):
+        back = escape.reversed_arc(arc, 1.25, 0.5)
+        assert back.longds == tuple(reversed(arc.longds))
+        plain = escape.reversed_arc(dataclasses.replace(arc, longds=None), 1.25, 0.5)
+        assert back.search_cost == pytest.approx(plain.search_cost, rel=1e-9)
+        assert back.unions == plain.unions and back.link_directions == plain.link_directions
+
+
 def test_reversing_plans_are_improved_by_turn_arounds_and_arcs():
     """The improvement of a reversing robot's plan (tight arcs either way, turn-arounds, one
     union between, compared by the search's cost) never makes the plan dearer and finds the

@@ -54,6 +54,8 @@ __all__ = [
     "RADIUS_FACTORS",
     "STEP",
     "TURNS",
+    "IMPROVE_SHARES",
+    "MULTI_POINT",
     "IMPROVE_TRIES",
     "TURN_AROUND_FROM",
     "TURN_LEGS",
@@ -98,7 +100,8 @@ class Arc:
     the start, ``first`` for an arc into the goal. ``cost``: the unions' exact LONGD [1] (the
     first's times their number for an arc along one circle: the same to rounding);
     ``search``: the search's cost of it (LONGD times ``reverse_factor`` where driven
-    backwards, plus ``cusp_penalty`` per change of direction; None: ``cost``).
+    backwards, plus ``cusp_penalty`` per change of direction; None: ``cost``); ``longds``:
+    each union's LONGD, in the order of ``unions``, where known (None: computed when needed).
     """
 
     unions: tuple
@@ -108,6 +111,7 @@ class Arc:
     into: bool
     directions: tuple = ()
     search: float | None = None
+    longds: tuple | None = None
 
     @property
     def link_directions(self) -> tuple:
@@ -189,8 +193,10 @@ def reversed_arc(arc: Arc, reverse_factor: float = 1.0, cusp_penalty: float = 0.
     its search cost with ``reverse_factor`` and ``cusp_penalty`` (m)."""
     unions = tuple(reversed(arc.unions))
     directions = tuple(-d for d in reversed(arc.link_directions))
-    search = _search_cost(unions, directions, arc.cost, reverse_factor, cusp_penalty)
-    return Arc(unions, arc.last, arc.first, arc.cost, not arc.into, plain_directions(directions), search)
+    longds = None if arc.longds is None else tuple(reversed(arc.longds))
+    search = _search_cost(unions, directions, arc.cost, reverse_factor, cusp_penalty, longds)
+    directions = plain_directions(directions)
+    return Arc(unions, arc.last, arc.first, arc.cost, not arc.into, directions, search, longds)
 
 
 def hops(
@@ -245,6 +251,28 @@ TURN_SHIFTS = (0.5, 1.0, 2.0, 3.0)
 #: (:func:`turn_arounds`): the whole leg, then half (k-turn-079: a full leg left no room for
 #: the next). Set by hand; not tuned.
 TURN_SHARES = (1.0, 0.5)
+#: Shares of their free unions the legs of the improvement's turn-arounds drive
+#: (:func:`_improve_reversing`): every one offered, from every start of :data:`TURN_SHIFTS`
+#: (``every`` of :func:`turn_arounds`: a search over the legs' lengths and the turn's
+#: position). Measured on 2026-12-03 on the reverse study's k-turn floors
+#: (``segplan.studies.reverse_floors``, OMPL's stored Reeds-Shepp BIT* 5 s the reference;
+#: shares and starts chosen on the 46 even floors OMPL solved, checked on the 48 odd ones):
+#: whole legs from the nearest start only (before) gave front-wheel lengths of median 1.069
+#: and worst 1.387 times OMPL's on the even floors, 1.084 and 1.376 on the odd ones; every
+#: share of (1, 0.75, 0.5, 0.33) or of (1, 0.67, 0.33) from the nearest start 1.048-1.049
+#: and 1.210 on the even floors but 1.078 and 1.376 on the odd ones; (1, 0.67, 0.33) from
+#: every start 1.046 and 1.210 (even), 1.037 and 1.200 (odd; floors over 1.15 times: 12 to
+#: 6). With :data:`MULTI_POINT`, on all 400 floors of the study: k-turn median 1.082 to
+#: 1.049 and worst 1.387 to 1.210 (46 plans shorter, 8 longer by 0.1-9 %, where the
+#: search's cost took a plan with fewer cusps or less reversing); bay-out and reverse-park
+#: plans the same, dead-end one shorter and one 4 % longer. Set so; not tuned further.
+IMPROVE_SHARES = (1.0, 0.67, 0.33)
+#: The improvement's turn-arounds search the legs' lengths and the turn's position
+#: (:data:`IMPROVE_SHARES`) only for a plan with at least this many changes of direction (a
+#: multi-point turn, which it may shorten): on the bay-out and reverse-park floors, whose
+#: plans have at most one, the search found nothing and took up to 4 times the CPU time of
+#: a call (2026-12-03, every fourth floor of the reverse study).
+MULTI_POINT = 2
 #: Legs of a turn-around at most (:func:`turn_arounds`).
 TURN_LEGS = 12
 #: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
@@ -305,6 +333,9 @@ def turn_arounds(
     reverse_factor: float = 1.0,
     cusp_penalty: float = 0.0,
     shares: tuple = TURN_SHARES,
+    every: bool = False,
+    budget: float = math.inf,
+    toward=None,
 ) -> list[Arc]:
     """Multi-point turns out of ``pose`` until its heading is within ``STEP / 2`` of
     ``target`` (radians): legs along tight circles, forwards and backwards in turn, each
@@ -321,7 +352,16 @@ def turn_arounds(
     :data:`TURN_SHARES`). One
     :class:`Arc` (``into=False``, its search cost with ``reverse_factor`` and
     ``cusp_penalty``, m) per turning sense and first direction that gets there; none where
-    the heading is already there."""
+    the heading is already there.
+
+    ``every`` (the improvement of a found plan, :data:`IMPROVE_SHARES`): the turn-arounds of
+    every share in ``shares`` from every start (the pose and its shifts) that gets there,
+    instead of the first share and the nearest start; a turn is given up once a lower bound
+    of the search cost of a plan through it, driven either way, exceeds ``budget`` (m): no
+    such plan could cost less. The bound: ``min(1, reverse_factor)`` times its LONGD so far
+    and the straight distance from where it got to ``toward`` (the plan's other end, a
+    pose; none if None: the front wheel's path is at least as long as the rear point's, and
+    that at least the distance), plus ``cusp_penalty`` per change of direction so far."""
     p = Pose(*pose)
     ws = links.ws
 
@@ -332,14 +372,14 @@ def turn_arounds(
         return []
     c, s = math.cos(p.theta), math.sin(p.theta)
 
-    def ways():  # (unions, directions, pose) to start the legs from, the nearest first
-        yield (), (), p
+    def ways():  # (unions, directions, pose, LONGDs) to start the legs from, the nearest first
+        yield (), (), p, ()
         for shift in TURN_SHIFTS:
             for sign in (1, -1):
                 q = Pose(p.x + sign * shift * R * c, p.y + sign * shift * R * s, p.theta)
                 u = links.union(p, q) if sign > 0 else links.union(q, p)
                 if u is not None and ws.union_free(u):
-                    yield (u,), (sign,), q
+                    yield (u,), (sign,), q, (union_longd(u),)
 
     made: list = []  # the ways made so far (each made once, when first needed, for every turn)
     more = ways()
@@ -350,59 +390,95 @@ def turn_arounds(
             made.append(way)
             yield way
 
+    costs = (reverse_factor, cusp_penalty, budget, toward)
+    legs: dict = {}  # the legs driven so far, by where they start, side and direction
     out: list = []
     for share in shares:
-        if not out:
-            out = _turn_arounds(links, p, R, there, starts, share, reverse_factor, cusp_penalty)
+        if not out or every:
+            out += _turn_arounds(links, p, R, there, starts, share, costs, every, legs)
     return out
 
 
-def _turn_arounds(links, p, R, there, starts, share, reverse_factor, cusp_penalty) -> list[Arc]:
+def _turn_arounds(links, p, R, there, starts, share, costs: tuple, every: bool, legs: dict) -> list[Arc]:
     """:func:`turn_arounds` with legs driving ``share`` of their free unions; ``starts()``
-    yields the ways to start from, the nearest first."""
+    yields the ways to start from, the nearest first; ``costs``: ``(reverse_factor,
+    cusp_penalty, budget, toward)``; ``every``: from every start, not only the nearest that
+    works; ``legs``: :func:`_turn`'s."""
+    reverse_factor, cusp_penalty, budget, toward = costs
+    least = min(1.0, reverse_factor)
     out = []
     for turn in (1, -1):
         for first in (1, -1):
-            for lead, lead_dirs, p0 in starts():
-                arc = _turn(links, p0, R, turn, first, there, share)
+            for lead, lead_dirs, p0, lead_longds in starts():
+                bound = (least, cusp_penalty, budget - least * math.fsum(lead_longds), toward)
+                arc = _turn(links, p0, R, turn, first, there, share, bound, legs)
                 if arc is None:
                     continue
                 unions, directions = lead + arc[0], lead_dirs + arc[1]
-                longds = [union_longd(u) for u in lead] + list(arc[3])
+                longds = lead_longds + arc[3]
                 cost = math.fsum(longds)
                 search = _search_cost(unions, directions, cost, reverse_factor, cusp_penalty, longds)
-                out.append(Arc(unions, p, arc[2], cost, False, plain_directions(directions), search))
-                break  # the nearest start that works
+                directions = plain_directions(directions)
+                out.append(Arc(unions, p, arc[2], cost, False, directions, search, longds))
+                if not every:
+                    break  # the nearest start that works
     return out
 
 
 def _turn(
-    links: LinkModel, p: Pose, R: float, turn: int, first: int, there, share: float = 1.0
+    links: LinkModel,
+    p: Pose,
+    R: float,
+    turn: int,
+    first: int,
+    there,
+    share: float = 1.0,
+    bound: tuple = (1.0, 0.0, math.inf, None),
+    legs: dict | None = None,
 ) -> tuple | None:
     """The legs of one turn-around from ``p`` (:func:`turn_arounds`): ``(unions, directions,
     end, longds)``, or None if it gets stuck or runs out of legs. Each leg drives the
     ``share`` of its free unions (rounded up; all of them to reach the target). The unions of
     a leg are congruent: each leg's first LONGD [1] stands for the others (as
-    :func:`tight_arcs`)."""
+    :func:`tight_arcs`). ``bound = (factor, penalty, budget, toward)``: None as soon as
+    ``factor`` times the LONGD so far and the distance to ``toward`` (a pose, or None) plus
+    ``penalty`` per change of direction exceeds ``budget`` (:func:`turn_arounds`' ``every``).
+    ``legs``: a dict that keeps the free legs (:func:`_leg`) by where they start, side and
+    direction, shared by the turns of one :func:`turn_arounds` (the same leg starts several
+    of its turns: every share's first), or None."""
+    factor, penalty, budget, toward = bound
     unions: list = []
     directions: list = []
     longds: list = []
     cur, stuck = p, 0
+    so_far, cusps = 0.0, 0  # LONGD and changes of direction of the legs so far
     for leg in range(TURN_LEGS):
         d = first if leg % 2 == 0 else -first
         side = turn if d > 0 else -turn  # both legs turn the heading the same way
-        got = _leg(links, cur, R, side, d, there)
+        key = (cur, side, d)
+        known = None if legs is None else legs.get(key)
+        if known is None:
+            got = _leg(links, cur, R, side, d, there)
+            known = got, union_longd(got[0][0]) if got else 0.0
+            if legs is not None:
+                legs[key] = known
+        got, piece = known
         if share < 1.0 and got and not there(got[-1][1]):
             got = got[: max(1, math.ceil(share * len(got)))]
         stuck = stuck + 1 if not got else 0
         if stuck == 2:
             return None
-        piece = union_longd(got[0][0]) if got else 0.0
         for u, q in got:
             unions.append(u)
             directions.append(d)
             longds.append(piece)
             cur = q
+        if got:
+            cusps += len(directions) > len(got) and directions[-len(got) - 1] != d
+            so_far += piece * len(got)
+        rest = 0.0 if toward is None else math.hypot(toward.x - cur.x, toward.y - cur.y)
+        if factor * (so_far + rest) + penalty * cusps > budget * (1.0 + 1e-9):
+            return None  # dearer than the budget, driven either way
         if there(cur):
             return tuple(unions), tuple(directions), cur, tuple(longds)
     return None
@@ -449,6 +525,8 @@ def arc_pairs(
     reverse_factor: float = 1.0,
     cusp_penalty: float = 0.0,
     escaping: bool = True,
+    budget: float = math.inf,
+    every: bool = False,
 ) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
@@ -463,7 +541,10 @@ def arc_pairs(
     (:func:`_interleaved`) and its turn-arounds may have half legs (:data:`TURN_SHARES`);
     otherwise (the improvement of a found plan, :func:`improve_with_arcs`) they are in the
     order of their estimates, without hops (they are for traps: their hundreds of pairs took
-    seconds) and with whole legs only.
+    seconds), its turn-arounds with whole legs from the nearest start, or if ``every``, those
+    of every share of :data:`IMPROVE_SHARES` from every start (``every`` of
+    :func:`turn_arounds`), none through which a plan would cost more than ``budget`` (m: the
+    found plan's).
     """
     robot = scenario.robot
     R = robot.min_turning_radius
@@ -477,13 +558,17 @@ def arc_pairs(
         starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
         starts += [h for d in (1, -1) if escaping for h in hops(links, start, robot.L, False, d, rf)]
     turning = abs(wrap_ieee(goal.theta - start.theta)) > TURN_AROUND_FROM
-    shares = TURN_SHARES if escaping else TURN_SHARES[:1]
+    if escaping:
+        shares, every = TURN_SHARES, False
+    else:
+        shares = IMPROVE_SHARES if every else TURN_SHARES[:1]
     if ends == "both" and turning:
-        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares)
+        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares, every, budget, goal)
     goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
     goals += [h for d in (1, -1) if escaping for h in hops(links, goal, robot.L, True, d, rf)]
     if turning:
-        goals += [reversed_arc(a, rf, cp) for a in turn_arounds(links, goal, start.theta, R, rf, cp, shares)]
+        back = turn_arounds(links, goal, start.theta, R, rf, cp, shares, every, budget, start)
+        goals += [reversed_arc(a, rf, cp) for a in back]
     pairs = escape_pairs(starts, goals, start, goal, R, True)
     return _interleaved(pairs) if escaping else pairs
 
@@ -578,7 +663,9 @@ def _improve_reversing(
     times the Reeds-Shepp length of the ends. The lattice's K-turns, whose primitives turn
     at ``1.12 R`` with headings 26.6 deg apart, cost 1.10 times OMPL's in the median on the
     reverse study's k-turn floors; a turn-around on tight circles and one union down the
-    corridor is often shorter."""
+    corridor is often shorter. For a plan with :data:`MULTI_POINT` changes of direction or
+    more, the turn-arounds are searched over the legs' lengths and the turn's position
+    (:data:`IMPROVE_SHARES`), none through which a plan would cost more than the plan."""
     R = scenario.robot.min_turning_radius
     s, g = Pose(*scenario.start), Pose(*scenario.goal)
     best, best_w = plan, weighted_cost(plan, rf, cp)
@@ -587,7 +674,8 @@ def _improve_reversing(
     if time.perf_counter() > deadline:
         return plan
     ws = links.ws
-    pairs = arc_pairs(scenario, links, "both", rf, cp, escaping=False)
+    every = len(plan.cusps) >= MULTI_POINT
+    pairs = arc_pairs(scenario, links, "both", rf, cp, escaping=False, budget=best_w, every=every)
     for est, a, b in pairs[:IMPROVE_TRIES]:
         if est >= best_w:
             break  # ordered by this estimate: no later pair can win
