@@ -91,3 +91,23 @@ def test_tight_arc_searches_cut_by_the_expansion_limit_say_so():
         segplan.plan_scenario(sc, max_expansions=1000, time_limit=60)
     assert info.value.reason == "expansions" and info.value.expanded == 1000
     assert "max_expansions=1000 was reached before the rest were tried" in str(info.value)
+
+
+def test_a_search_between_arcs_stopped_by_the_enclosure_limit_does_not_blame_max_expansions():
+    """clutter-001 of the kind floors with chapter 12's rectangular body: the goal looks
+    enclosed, the one search between tight arcs stops at the lattice's own enclosure limit
+    after a few hundred expansions, far below ``max_expansions``: the message names that
+    limit and does not say that ``max_expansions`` was reached (it said so before)."""
+    from dataclasses import replace
+
+    from segplan.studies import floor_kinds
+
+    base = floor_kinds.kind_floor("clutter", 1)
+    robot = replace(base.robot, front_overhang=0.2, rear_overhang=0.3, rectangle=True)
+    sc = segplan.make_scenario(robot, base.start, base.goal, base.outlines, base.bounds)
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(sc, max_expansions=20_000, time_limit=120.0)
+    message = str(info.value)
+    assert info.value.expanded < 20_000
+    assert "max_expansions=20000 was reached" not in message
+    assert "stopped at the lattice's own limit (its goal looked enclosed" in message

@@ -544,8 +544,13 @@ def _escape(
     exc.seconds = time.perf_counter() - t0
     tried = f"searches between tight arcs at the ends: {tries} of {len(pairs)} tried, none joined"
     if cut is not None:  # the tries were cut short: not a result about the floor
-        limit = f"max_expansions={max_expansions}" if cut == "expansions" else "the time limit"
-        tried += f"; {limit} was reached before the rest were tried (more may join: raise it)"
+        if cut == "time" or used >= max_expansions:
+            limit = f"max_expansions={max_expansions}" if cut == "expansions" else "the time limit"
+            tried += f"; {limit} was reached before the rest were tried (more may join: raise it)"
+        else:  # a search between arcs stopped where its goal looked enclosed, below the call's limit
+            own = f"Schedule.enclosed_expansions={schedule.enclosed_expansions}"
+            tried += "; a search between them stopped at the lattice's own limit"
+            tried += f" (its goal looked enclosed: {own}; a limit, not a proof)"
         exc.reason = cut
     exc.args = (f"{exc.head}; {tried}; expanded {used} states",)
     raise exc
