@@ -132,7 +132,7 @@ def test_turn_arounds_turn_one_way_to_the_target_and_join_their_legs():
         turns = turns[np.abs(turns) > 1e-9]  # a straight move may lead in
         assert (np.sign(turns) == np.sign(turns[0])).all()  # every leg turns the same way
         d = arc.link_directions
-        cusps = sum(a != b for a, b in zip(d[:-1], d[1:], strict=True))
+        cusps = _cusps(d)
         assert cusps >= 1
         back = sum(union_longd(u) for u, x in zip(arc.unions, d, strict=True) if x < 0)
         assert arc.search_cost == pytest.approx(arc.cost + 0.25 * back + 0.75 * cusps, rel=1e-9)
@@ -152,6 +152,10 @@ def test_a_turn_around_near_a_closed_end_starts_after_a_straight_move():
         lead = arc.unions[0]
         assert lead.p0.theta == lead.p1.theta == start.theta  # straight, along the heading
         assert math.hypot(lead.p1.x - lead.p0.x, lead.p1.y - lead.p0.y) / R in escape.TURN_SHIFTS
+
+
+def _cusps(directions) -> int:
+    return sum(a != b for a, b in zip(directions[:-1], directions[1:], strict=True))
 
 
 def _arc_key(arc: escape.Arc) -> tuple:
@@ -185,7 +189,7 @@ def test_every_share_and_start_is_a_superset_and_the_budget_drops_only_dearer_tu
     def bound(arc):  # the cusps of the legs (a straight move may lead in: not counted)
         lead = arc.unions[0].p0.theta == arc.unions[0].p1.theta
         d = arc.link_directions[1:] if lead else arc.link_directions
-        cusps = sum(a != b for a, b in zip(d[:-1], d[1:], strict=True))
+        cusps = _cusps(d)
         rest = math.hypot(goal.x - arc.last.x, goal.y - arc.last.y)
         return min(1.0, rf_) * (arc.cost + rest) + cp * cusps
 

@@ -470,14 +470,14 @@ def _turn(
         stuck = stuck + 1 if not got else 0
         if stuck == 2:
             return None
+        if got and directions and directions[-1] != d:
+            cusps += 1
+        so_far += piece * len(got)
         for u, q in got:
             unions.append(u)
             directions.append(d)
             longds.append(piece)
             cur = q
-        if got:
-            cusps += len(directions) > len(got) and directions[-len(got) - 1] != d
-            so_far += piece * len(got)
         rest = 0.0 if toward is None else math.hypot(toward.x - cur.x, toward.y - cur.y)
         if factor * (so_far + rest) + penalty * cusps > budget * (1.0 + 1e-9):
             return None  # dearer than the budget, driven either way
