@@ -154,3 +154,43 @@ def test_progress_can_stop_a_call_and_must_be_callable():
         segplan.plan_scenario(sc, progress=stop)
     with pytest.raises(ValueError, match="progress must be callable"):
         segplan.plan_scenario(sc, progress="bar")
+
+
+# -- the study of many plans on one floor (segplan.studies.planner_reuse) ---------------------
+def test_turned_is_the_same_footprint_facing_the_other_way():
+    from segplan.studies.planner_reuse import turned
+
+    for pose in [(1.0, 2.0, 0.3), (5.0, 5.0, -2.9), (0.0, 0.0, math.pi)]:
+        x, y, th = turned(pose, 1.5)
+        a, b = np.array(pose[:2]), np.array(pose[:2]) + 1.5 * np.array([math.cos(pose[2]), math.sin(pose[2])])
+        assert np.allclose((x, y), b, atol=1e-6)  # A moved to B
+        assert np.allclose(np.array((x, y)) + 1.5 * np.array([math.cos(th), math.sin(th)]), a, atol=1e-5)
+        assert -math.pi < th <= math.pi
+
+
+def test_floor_queries_are_free_on_the_kinds_floors():
+    from segplan.studies.planner_reuse import QUERIES, floor_queries
+
+    for kind in ("warehouse", "rooms", "parking", "clutter", "robots"):
+        sc = floor_kinds.kind_floor(kind, 0)
+        queries = floor_queries(sc)
+        assert [q[0] for q in queries] == list(QUERIES)
+        assert queries[0][1:] == (tuple(sc.start), tuple(sc.goal))
+        floor = prepare_floor(sc.robot, sc.outlines, sc.bounds)
+        for _, a, b in queries:
+            floor.scenario(a, b)  # raises ScenarioError for a pose that is not free
+    with pytest.raises(ValueError, match="segplan.Scenario"):
+        floor_queries((1, 2, 3))
+
+
+def test_run_reuse_times_both_ways_and_finds_the_same_plans():
+    from segplan.studies.planner_reuse import REUSE_COLUMNS, run_reuse
+
+    sc = segplan.make_scenario(ROBOT, (1, 1, 0), (8.3, 7, 0), OBSTACLES, BOUNDS, name="box")
+    lines = []
+    table = run_reuse([("box", sc)], {"max_expansions": 5000}, progress=lines.append)
+    assert list(table.columns) == list(REUSE_COLUMNS)
+    assert list(table["order"]) == list(range(len(table))) and len(table) == 4 == len(lines)
+    assert table["same_plan"].all() and table["solved"].iloc[0]  # an unsolved query: NoPathError both ways
+    assert (table[["fresh_seconds", "reused_seconds", "build_seconds"]] > 0).all().all()
+    assert table["build_seconds"].nunique() == 1
