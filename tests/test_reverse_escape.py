@@ -205,6 +205,37 @@ def test_every_share_and_start_is_a_superset_and_the_budget_drops_only_dearer_tu
     assert len(kept) < len(every)
 
 
+@pytest.mark.parametrize("index", [3, 14])
+def test_turns_stopped_short_end_near_the_target_and_shorten_the_worst_k_turns(index):
+    """``near``: a turn-around stopped within each tolerance of the target heading (the
+    first tolerance, ``STEP / 2``, gives the turns of the default call, the same arcs); each
+    ends within its tolerance and before it turns all the way, its legs free and within the
+    steering limit. On k-turn-003 and k-turn-014 (the reverse study's worst K-turns before
+    :data:`escape.IMPROVE_NEAR`: OMPL turns round near the start and reverses down the
+    corridor into the goal) the plan is shorter, valid, than with whole turns only."""
+    sc = rs.with_reverse(rf.reverse_floor("k-turn", index))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    start, goal = Pose(*sc.start), Pose(*sc.goal)
+    args = (links, start, goal.theta, R, 1.25, 0.5 * sc.robot.L, escape.IMPROVE_SHARES, True)
+    whole = escape.turn_arounds(*args)
+    near = escape.turn_arounds(*args, near=escape.IMPROVE_NEAR)
+    assert [_arc_key(a) for a in near[: len(whole)]] == [_arc_key(a) for a in whole]
+    short = near[len(whole) :]
+    assert short
+    ws = links.ws
+    for arc in short:
+        off = abs(math.remainder(arc.last.theta - goal.theta, 2 * math.pi))
+        assert 0.5 * escape.STEP <= off < max(escape.IMPROVE_NEAR)
+        assert all(ws.curvature_ok(u) and ws.union_free(u) for u in arc.unions)
+    plan = segplan.plan_scenario(sc)
+    _valid(plan, sc)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(escape, "IMPROVE_NEAR", escape.IMPROVE_NEAR[:1])
+        before = segplan.plan_scenario(sc)
+    assert plan.cost < 0.95 * before.cost
+
+
 def test_a_reversed_turn_around_keeps_its_longds_and_its_search_cost():
     """A goal's turn-around driven the other way (:func:`escape.reversed_arc`) reuses the
     unions' LONGDs: its search cost is the one computed from each union's own LONGD (the

@@ -242,8 +242,9 @@ BOTH_ENDS = 8
 #: this (radians): a quarter turn, within a lattice's reach without one.
 TURN_AROUND_FROM = 0.5 * math.pi
 #: Pairs tried at most by a reversing robot's improvement (:func:`_improve_reversing`), the
-#: cheapest estimates first. Set by hand (the bay-out floors' improvement took 40-85 ms
-#: without a cap); not tuned.
+#: cheapest estimates first; as many again for each tolerance of :data:`IMPROVE_NEAR` beyond
+#: the first where those turn-arounds are offered. Set by hand (the bay-out floors'
+#: improvement took 40-85 ms without a cap); not tuned.
 IMPROVE_TRIES = 32
 #: Straight moves before a turn-around (times ``R``; :func:`turn_arounds`). Set by hand; not tuned.
 TURN_SHIFTS = (0.5, 1.0, 2.0, 3.0)
@@ -275,6 +276,22 @@ IMPROVE_SHARES = (1.0, 0.67, 0.33)
 #: 0.01 % shorter, left the reverse-park plans as they were and took up to 4 times the CPU
 #: time of a call; with this gate their plans are those of before.
 MULTI_POINT = 2
+#: How close to the other end's heading the improvement's turn-arounds turn (radians,
+#: ``near`` of :func:`turn_arounds`, with ``every``): all the way (within ``STEP / 2``), and
+#: stopped short by up to 30 and 60 degrees, the union to the other end turning the rest.
+#: Chosen on 2026-12-03 on the reverse study's k-turn-014 (``segplan.studies.reverse_floors``;
+#: OMPL's stored Reeds-Shepp BIT* 5 s turns round near the start and reverses 4 m into the
+#: goal, turning on the way: whole turn-arounds joined by one union cost 1.210 times its
+#: length, 60 degrees short 1.065; 90 joined nothing). Measured on all 400 floors, each half
+#: against the stored run of the code before: k-turn front-wheel length median 1.049 to 1.035
+#: and worst 1.210 to 1.176 on the 46 even floors OMPL solved, 1.040 to 1.033 and 1.200 to
+#: 1.165 on the 48 odd ones; floors over 1.15 times 4 to 1 and 6 to 1; 33 k-turn plans
+#: shorter, 10 longer (the worst, k-turn-042, 1.002 to 1.176: the search's cost took a plan
+#: reversing 1.4 m instead of 8.7 m, with a cusp fewer); bay-out and reverse-park plans the
+#: same, two dead-end plans shorter. A first run with :data:`IMPROVE_TRIES` pairs in all,
+#: not per tolerance, lost the odd floors' k-turn-069 (1.117 to 1.242: the winning pair fell
+#: beyond the cap); the cap per tolerance was set after it, on that floor.
+IMPROVE_NEAR = (0.5 * STEP, math.radians(30.0), math.radians(60.0))
 #: Legs of a turn-around at most (:func:`turn_arounds`).
 TURN_LEGS = 12
 #: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
@@ -338,11 +355,13 @@ def turn_arounds(
     every: bool = False,
     budget: float = math.inf,
     toward=None,
+    near: tuple = (0.5 * STEP,),
 ) -> list[Arc]:
     """Multi-point turns out of ``pose`` until its heading is within ``STEP / 2`` of
-    ``target`` (radians): legs along tight circles, forwards and backwards in turn, each
-    turning the same way (forwards on the left circle, backwards on the right one, or the
-    mirror image) as far as its unions stay free, at most :data:`TURN_LEGS` legs. A K-turn
+    ``target`` (radians; or each of ``near``, see below): legs along tight circles, forwards
+    and backwards in turn, each turning the same way (forwards on the left circle, backwards
+    on the right one, or the mirror image) as far as its unions stay free, at most
+    :data:`TURN_LEGS` legs. A K-turn
     (a three-point turn and its longer kin) in a corridor narrower than two turning radii,
     which the lattice's coarse headings and longer primitives cannot make
     (``segplan.studies.reverse_floors``' k-turn floors: 15 of 94 failed without it).
@@ -363,12 +382,35 @@ def turn_arounds(
     such plan could cost less. The bound: ``min(1, reverse_factor)`` times its LONGD so far
     and the straight distance from where it got to ``toward`` (the plan's other end, a
     pose; none if None: the front wheel's path is at least as long as the rear point's, and
-    that at least the distance), plus ``cusp_penalty`` per change of direction so far."""
+    that at least the distance), plus ``cusp_penalty`` per change of direction so far.
+
+    ``near``: how close to ``target`` a turn's heading must get (radians, each at least
+    ``STEP / 2``), the turns of each in turn (:data:`IMPROVE_NEAR`): a turn stopped short of
+    the target leaves the rest of the turn to the union that joins it to the other end, as a
+    peer's plan turns while it drives down the corridor."""
     p = Pose(*pose)
+    out: list = []
+    for tolerance in near:
+        out += _turn_arounds_near(
+            links,
+            p,
+            target,
+            R,
+            max(0.5 * STEP, tolerance),
+            (reverse_factor, cusp_penalty, budget, toward),
+            shares,
+            every,
+        )
+    return out
+
+
+def _turn_arounds_near(links, p: Pose, target: float, R: float, tolerance: float, costs, shares, every):
+    """:func:`turn_arounds` with one tolerance: the turns whose heading ends within
+    ``tolerance`` of ``target``."""
     ws = links.ws
 
     def there(q: Pose) -> bool:
-        return abs(wrap_ieee(q.theta - target)) < 0.5 * STEP
+        return abs(wrap_ieee(q.theta - target)) < tolerance
 
     if there(p):
         return []
@@ -392,7 +434,6 @@ def turn_arounds(
             made.append(way)
             yield way
 
-    costs = (reverse_factor, cusp_penalty, budget, toward)
     legs: dict = {}  # the legs driven so far, by where they start, side and direction
     out: list = []
     for share in shares:
@@ -560,16 +601,18 @@ def arc_pairs(
         starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
         starts += [h for d in (1, -1) if escaping for h in hops(links, start, robot.L, False, d, rf)]
     turning = abs(wrap_ieee(goal.theta - start.theta)) > TURN_AROUND_FROM
+    near = (0.5 * STEP,)
     if escaping:
         shares, every = TURN_SHARES, False
     else:
         shares = IMPROVE_SHARES if every else TURN_SHARES[:1]
+        near = IMPROVE_NEAR if every else near
     if ends == "both" and turning:
-        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares, every, budget, goal)
+        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares, every, budget, goal, near)
     goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
     goals += [h for d in (1, -1) if escaping for h in hops(links, goal, robot.L, True, d, rf)]
     if turning:
-        back = turn_arounds(links, goal, start.theta, R, rf, cp, shares, every, budget, start)
+        back = turn_arounds(links, goal, start.theta, R, rf, cp, shares, every, budget, start, near)
         goals += [reversed_arc(a, rf, cp) for a in back]
     pairs = escape_pairs(starts, goals, start, goal, R, True)
     return _interleaved(pairs) if escaping else pairs
@@ -678,7 +721,8 @@ def _improve_reversing(
     ws = links.ws
     every = len(plan.cusps) >= MULTI_POINT
     pairs = arc_pairs(scenario, links, "both", rf, cp, escaping=False, budget=best_w, every=every)
-    for est, a, b in pairs[:IMPROVE_TRIES]:
+    tries = IMPROVE_TRIES * (len(IMPROVE_NEAR) if every else 1)  # as many per tolerance
+    for est, a, b in pairs[:tries]:
         if est >= best_w:
             break  # ordered by this estimate: no later pair can win
         if time.perf_counter() > deadline:
