@@ -54,6 +54,7 @@ __all__ = [
     "RADIUS_FACTORS",
     "STEP",
     "TURNS",
+    "IMPROVE_NEAR",
     "IMPROVE_SHARES",
     "MULTI_POINT",
     "IMPROVE_TRIES",
@@ -61,6 +62,7 @@ __all__ = [
     "TURN_LEGS",
     "TURN_SHARES",
     "TURN_SHIFTS",
+    "WHOLE_TURN",
     "Arc",
     "arc_pairs",
     "escape_pairs",
@@ -292,6 +294,8 @@ MULTI_POINT = 2
 #: not per tolerance, lost the odd floors' k-turn-069 (1.117 to 1.242: the winning pair fell
 #: beyond the cap); the cap per tolerance was set after it, on that floor.
 IMPROVE_NEAR = (0.5 * STEP, math.radians(30.0), math.radians(60.0))
+#: A turn-around all the way round (``near`` of :func:`turn_arounds`: within ``STEP / 2``).
+WHOLE_TURN = IMPROVE_NEAR[:1]
 #: Legs of a turn-around at most (:func:`turn_arounds`).
 TURN_LEGS = 12
 #: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
@@ -355,7 +359,7 @@ def turn_arounds(
     every: bool = False,
     budget: float = math.inf,
     toward=None,
-    near: tuple = (0.5 * STEP,),
+    near: tuple = WHOLE_TURN,
 ) -> list[Arc]:
     """Multi-point turns out of ``pose`` until its heading is within ``STEP / 2`` of
     ``target`` (radians; or each of ``near``, see below): legs along tight circles, forwards
@@ -406,7 +410,7 @@ def turn_arounds(
 
 def _turn_arounds_near(links, p: Pose, target: float, R: float, tolerance: float, costs, shares, every):
     """:func:`turn_arounds` with one tolerance: the turns whose heading ends within
-    ``tolerance`` of ``target``."""
+    ``tolerance`` (radians) of ``target`` (``costs``: :func:`_turn_arounds`')."""
     ws = links.ws
 
     def there(q: Pose) -> bool:
@@ -601,12 +605,11 @@ def arc_pairs(
         starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
         starts += [h for d in (1, -1) if escaping for h in hops(links, start, robot.L, False, d, rf)]
     turning = abs(wrap_ieee(goal.theta - start.theta)) > TURN_AROUND_FROM
-    near = (0.5 * STEP,)
     if escaping:
         shares, every = TURN_SHARES, False
     else:
         shares = IMPROVE_SHARES if every else TURN_SHARES[:1]
-        near = IMPROVE_NEAR if every else near
+    near = IMPROVE_NEAR if every else WHOLE_TURN
     if ends == "both" and turning:
         starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares, every, budget, goal, near)
     goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
