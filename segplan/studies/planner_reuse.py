@@ -37,11 +37,10 @@ from functools import partial
 import pandas as pd
 
 from ..floor.scenario import Scenario, ScenarioError, make_scenario
-from ..model.pose import wrap_scalar
 from ..planning.api import plan_scenario
 from ..planning.plan import NoPathError, Plan
 from ..planning.planner import Planner
-from .floor_layouts import DIGITS
+from .floor_kinds import _pose, _shift
 
 __all__ = ["QUERIES", "REUSE_COLUMNS", "SAME_PLAN_RTOL", "floor_queries", "run_reuse", "turned"]
 
@@ -73,11 +72,8 @@ def turned(pose, L: float) -> tuple[float, float, float]:
     """The same footprint facing the other way: A moved to B (``L`` ahead), the heading turned
     by pi (rounded like the floors' poses, to a micrometre and a microradian)."""
     x, y, th = (float(v) for v in pose)
-    return (
-        round(x + L * math.cos(th), DIGITS),
-        round(y + L * math.sin(th), DIGITS),
-        round(wrap_scalar(th + math.pi), DIGITS),
-    )
+    bx, by, _ = _shift((x, y, th), L)
+    return _pose(bx, by, th + math.pi)
 
 
 def floor_queries(scenario: Scenario) -> list[tuple[str, tuple, tuple]]:
