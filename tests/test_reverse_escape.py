@@ -301,3 +301,35 @@ def test_cusps_move_where_the_search_cost_drops_and_the_plan_stays_valid(monkeyp
     plain = segplan.load_scenario("single_obstacle")
     forward = segplan.plan_scenario(plain)
     assert polish_cusps(forward, LinkModel(workspace_of(plain)), RefineOptions(), 1.25) == (forward, 0)
+
+
+def _leg_key(leg) -> list:
+    return [(u.p0, u.p1, u.alpha, q) for u, q in leg]
+
+
+@pytest.mark.parametrize("floor", [("k-turn", 4), ("dead-end", 10), ("bay-out", 3)])
+def test_legs_kept_for_reuse_answer_as_a_leg_driven_afresh(floor):
+    # escape.Legs keeps each leg it drives; a later request with another stop or length is cut
+    # from it or driven further: union for union what a Legs driven for that request alone gives
+    sc = rs.with_reverse(rf.reverse_floor(*floor))
+    links = LinkModel(workspace_of(sc))
+    R = sc.robot.min_turning_radius
+    kept = escape.Legs(links, R)
+    rng = np.random.default_rng(26)
+    starts = [Pose(*sc.start), Pose(*sc.goal)]
+    for _ in range(60):
+        p = starts[rng.integers(2)]
+        side, direction = int(rng.choice([1, -1])), int(rng.choice([1, -1]))
+        steps = int(rng.integers(1, escape.LEG_STEPS + 1))
+        target, tol = float(rng.uniform(-math.pi, math.pi)), float(rng.uniform(0.05, 1.0))
+
+        def stop(q, target=target, tol=tol):
+            return abs(math.remainder(q.theta - target, 2 * math.pi)) < tol
+
+        got = kept.leg(p, side, direction, stop, steps)
+        fresh = escape.Legs(links, R).leg(p, side, direction, stop, steps)
+        assert _leg_key(got) == _leg_key(fresh)
+        if got:
+            assert kept.piece(p, side, direction) == union_longd(got[0][0])
+    with pytest.raises(ValueError, match="another link model"):
+        escape.tight_arcs(LinkModel(workspace_of(sc)), sc.start, R, legs=kept)

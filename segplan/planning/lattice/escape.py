@@ -16,6 +16,9 @@ the pose). :func:`escape_pairs` orders the combinations of a start arc and a goa
 again (at its first resolution) between the inner poses of each in turn when its search runs
 out of states, and puts the arcs around the plan it finds (:func:`join_arcs`).
 :func:`improve_with_arcs` joins such arcs by one union where that beats a found plan.
+A planning call drives each leg along a tight circle once (:class:`Legs`, made by the planner
+and passed to all of these): the escapes, the improvement and every tolerance of its
+turn-arounds ask for the same legs again.
 
 **A robot that may reverse** (issue 26; :mod:`segplan.planning.lattice.reverse`) also has
 the arcs driven backwards (:func:`reversed_arc`: the same unions, the other direction) and
@@ -64,6 +67,7 @@ __all__ = [
     "TURN_SHIFTS",
     "WHOLE_TURN",
     "Arc",
+    "Legs",
     "arc_pairs",
     "escape_pairs",
     "hops",
@@ -135,7 +139,7 @@ def _circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
     return Pose(x, y, wrap_ieee(th))
 
 
-def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc]:
+def tight_arcs(links: LinkModel, pose, R: float, into: bool = False, legs: Legs | None = None) -> list[Arc]:
     """Free arcs out of ``pose`` (``into=False``) or into it (``into=True``), both sides.
 
     Parameters
@@ -148,6 +152,9 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc
         The minimum turning radius.
     into : bool
         Arcs that end at ``pose`` (the goal side) rather than start there.
+    legs : Legs, optional
+        The legs driven so far in this planning call (of ``links`` and ``R``), to reuse;
+        None: a new one (the same arcs).
 
     Returns
     -------
@@ -155,13 +162,14 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False) -> list[Arc
         One per side and per turn of :data:`TURNS` reached with every union free.
     """
     p = Pose(*pose)
+    legs = _legs_of(links, R, legs)
     out = []
     per = [int(round(t / STEP)) for t in TURNS]
     for side in (1, -1):
         # into the pose: the circle behind it, driven forwards to it (a leg out of it, backwards)
-        got = _leg(links, p, R, side, -1 if into else 1, _never, per[-1])
+        got = legs.leg(p, side, -1 if into else 1, _never, per[-1])
         unions, cost = [], 0.0
-        piece = union_longd(got[0][0]) if got else 0.0  # every later union is congruent
+        piece = legs.piece(p, side, -1 if into else 1) if got else 0.0  # every later union is congruent
         for k, (u, cur) in enumerate(got, 1):
             unions.append(u)
             cost += piece
@@ -303,49 +311,101 @@ LEG_STEPS = 32
 
 
 def _never(pose: Pose) -> bool:
-    """A leg's ``stop`` that never stops it (:func:`_leg`)."""
+    """A leg's ``stop`` that never stops it (:meth:`Legs.leg`)."""
     return False
 
 
-def _leg(
-    links: LinkModel, p: Pose, R: float, side: int, direction: int, stop, steps: int = LEG_STEPS
-) -> list[tuple]:
-    """``(union, pose)`` of the free unions along the tight circle on ``side`` of ``p``
-    (the smallest radius of :data:`RADIUS_FACTORS` whose first union keeps the steering
-    limit: the shape is the same all along), each turning by :data:`STEP`, driven
-    ``direction``, at most ``steps`` of them, until one is not free or ``stop(pose)``; each
-    union stored as a plan stores its link (module docstring)."""
-    ws = links.ws
-    sign = 1.0 if direction > 0 else -1.0
-    rho = None
-    for f in RADIUS_FACTORS:
-        q = _circle_pose(p, f * R, side, sign * STEP)
-        u = links.union(p, q) if direction > 0 else links.union(q, p)
-        if u is not None and ws.curvature_ok(u):
-            rho = f * R
-            break
-    out: list = []
-    if rho is None:
+def _legs_of(links: LinkModel, R: float, legs: Legs | None) -> Legs:
+    """``legs``, checked to be of ``links`` and ``R``; a new :class:`Legs` if None."""
+    if legs is None:
+        return Legs(links, R)
+    if legs.links is not links or legs.R != float(R):
+        raise ValueError("legs were driven with another link model or turning radius")
+    return legs
+
+
+class Legs:
+    """The free legs along tight circles driven so far in one planning call, each driven once.
+
+    A leg (:meth:`leg`) is the chain of congruent unions along the tight circle on one side of
+    a pose, driven one way; the same leg is asked for many times over (the turn-arounds of
+    every tolerance of :data:`IMPROVE_NEAR`, share of :data:`IMPROVE_SHARES` and start, the
+    escapes' and the improvement's arcs: 1663 requests of 566 legs on the reverse study's
+    k-turn-004), with other stops and lengths. Each is kept by where it starts, its side and
+    its direction, with whether it ended at a union that is not free; a request is answered
+    from it (cut where its own ``stop`` holds or after its own ``steps``) and driven further
+    only beyond what was driven: every answer is the one a leg driven afresh gives, union for
+    union. Made by the caller for one scenario and link model (``links``, ``R``) and passed
+    on; caching is the caller's choice (a fresh one per call gives the same arcs).
+    """
+
+    def __init__(self, links: LinkModel, R: float):
+        self.links, self.R = links, float(R)
+        self._known: dict = {}  # (p, side, direction) -> [rho, [(union, pose), ...], ended, piece]
+
+    def leg(self, p: Pose, side: int, direction: int, stop, steps: int = LEG_STEPS) -> list[tuple]:
+        """``(union, pose)`` of the free unions along the tight circle on ``side`` of ``p``
+        (the smallest radius of :data:`RADIUS_FACTORS` whose first union keeps the steering
+        limit: the shape is the same all along), each turning by :data:`STEP`, driven
+        ``direction``, at most ``steps`` of them, until one is not free or ``stop(pose)``; each
+        union stored as a plan stores its link (module docstring)."""
+        key = (p, side, direction)
+        rec = self._known.get(key)
+        if rec is None:
+            rec = self._known[key] = [self._radius(p, side, direction), [], False, None]
+            rec[2] = rec[0] is None
+        rho, got, ended, _ = rec
+        out: list = []
+        for k, (u, q) in enumerate(got, 1):
+            if k > steps:
+                return out
+            out.append((u, q))
+            if stop(q):
+                return out
+        if ended:
+            return out
+        ws, links = self.links.ws, self.links
+        sign = 1.0 if direction > 0 else -1.0
+        cur = got[-1][1] if got else p
+        u1 = got[0][0] if got else None  # every later union is congruent to it (its frame, moved along)
+        for k in range(len(got) + 1, steps + 1):
+            q = _circle_pose(p, rho, side, sign * k * STEP)
+            a, b = (cur, q) if direction > 0 else (q, cur)
+            geo = None if u1 is None else intrinsic_interval(a, b)
+            if geo is not None and geo[4] < u1.alpha < geo[5]:
+                d, psi, phi0, phi1, _, _ = geo
+                u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
+            else:
+                u = links.union(a, b)
+            if u is None or not ws.union_free(u):
+                rec[2] = True
+                break
+            u1 = u1 or u
+            got.append((u, q))
+            out.append((u, q))
+            cur = q
+            if stop(q):
+                break
         return out
-    cur = p
-    u1 = None  # the first union: every later one is congruent (its frame, moved along)
-    for k in range(1, steps + 1):
-        q = _circle_pose(p, rho, side, sign * k * STEP)
-        a, b = (cur, q) if direction > 0 else (q, cur)
-        geo = None if u1 is None else intrinsic_interval(a, b)
-        if geo is not None and geo[4] < u1.alpha < geo[5]:
-            d, psi, phi0, phi1, _, _ = geo
-            u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
-        else:
-            u = links.union(a, b)
-        if u is None or not ws.union_free(u):
-            break
-        u1 = u1 or u
-        out.append((u, q))
-        cur = q
-        if stop(q):
-            break
-    return out
+
+    def piece(self, p: Pose, side: int, direction: int) -> float:
+        """LONGD [1] of the first union of a leg asked for before (every union of it is
+        congruent: it stands for each); 0 for a leg without one."""
+        rec = self._known[(p, side, direction)]
+        if rec[3] is None:
+            rec[3] = union_longd(rec[1][0][0]) if rec[1] else 0.0
+        return rec[3]
+
+    def _radius(self, p: Pose, side: int, direction: int) -> float | None:
+        """The smallest radius of :data:`RADIUS_FACTORS` times ``R`` whose first union keeps
+        the steering limit; None if none does."""
+        links, sign = self.links, 1.0 if direction > 0 else -1.0
+        for f in RADIUS_FACTORS:
+            q = _circle_pose(p, f * self.R, side, sign * STEP)
+            u = links.union(p, q) if direction > 0 else links.union(q, p)
+            if u is not None and links.ws.curvature_ok(u):
+                return f * self.R
+        return None
 
 
 def turn_arounds(
@@ -360,6 +420,7 @@ def turn_arounds(
     budget: float = math.inf,
     toward=None,
     near: tuple = WHOLE_TURN,
+    legs: Legs | None = None,
 ) -> list[Arc]:
     """Multi-point turns out of ``pose`` until its heading is within ``STEP / 2`` of
     ``target`` (radians; or each of ``near``, see below): legs along tight circles, forwards
@@ -391,8 +452,12 @@ def turn_arounds(
     ``near``: how close to ``target`` a turn's heading must get (radians, each at least
     ``STEP / 2``), the turns of each in turn (:data:`IMPROVE_NEAR`): a turn stopped short of
     the target leaves the rest of the turn to the union that joins it to the other end, as a
-    peer's plan turns while it drives down the corridor."""
+    peer's plan turns while it drives down the corridor.
+
+    ``legs``: the legs driven so far in this planning call (:class:`Legs`, of ``links`` and
+    ``R``), to reuse; None: a new one, shared by the turns of every tolerance (the same arcs)."""
     p = Pose(*pose)
+    legs = _legs_of(links, R, legs)
     out: list = []
     for tolerance in near:
         out += _turn_arounds_near(
@@ -404,13 +469,15 @@ def turn_arounds(
             (reverse_factor, cusp_penalty, budget, toward),
             shares,
             every,
+            legs,
         )
     return out
 
 
-def _turn_arounds_near(links, p: Pose, target: float, R: float, tolerance: float, costs, shares, every):
+def _turn_arounds_near(links, p: Pose, target: float, R: float, tolerance: float, costs, shares, every, legs):
     """:func:`turn_arounds` with one tolerance: the turns whose heading ends within
-    ``tolerance`` (radians) of ``target`` (``costs``: :func:`_turn_arounds`')."""
+    ``tolerance`` (radians) of ``target`` (``costs``: :func:`_turn_arounds`'; ``legs``: a
+    :class:`Legs`)."""
     ws = links.ws
 
     def there(q: Pose) -> bool:
@@ -438,7 +505,6 @@ def _turn_arounds_near(links, p: Pose, target: float, R: float, tolerance: float
             made.append(way)
             yield way
 
-    legs: dict = {}  # the legs driven so far, by where they start, side and direction
     out: list = []
     for share in shares:
         if not out or every:
@@ -446,7 +512,7 @@ def _turn_arounds_near(links, p: Pose, target: float, R: float, tolerance: float
     return out
 
 
-def _turn_arounds(links, p, R, there, starts, share, costs: tuple, every: bool, legs: dict) -> list[Arc]:
+def _turn_arounds(links, p, R, there, starts, share, costs: tuple, every: bool, legs: Legs) -> list[Arc]:
     """:func:`turn_arounds` with legs driving ``share`` of their free unions; ``starts()``
     yields the ways to start from, the nearest first; ``costs``: ``(reverse_factor,
     cusp_penalty, budget, toward)``; ``every``: from every start, not only the nearest that
@@ -481,7 +547,7 @@ def _turn(
     there,
     share: float = 1.0,
     bound: tuple = (1.0, 0.0, math.inf, None),
-    legs: dict | None = None,
+    legs: Legs | None = None,
 ) -> tuple | None:
     """The legs of one turn-around from ``p`` (:func:`turn_arounds`): ``(unions, directions,
     end, longds)``, or None if it gets stuck or runs out of legs. Each leg drives the
@@ -490,9 +556,9 @@ def _turn(
     :func:`tight_arcs`). ``bound = (factor, penalty, budget, toward)``: None as soon as
     ``factor`` times the LONGD so far and the distance to ``toward`` (a pose, or None) plus
     ``penalty`` per change of direction exceeds ``budget`` (:func:`turn_arounds`' ``every``).
-    ``legs``: a dict that keeps the free legs (:func:`_leg`) by where they start, side and
-    direction, shared by the turns of one :func:`turn_arounds` (the same leg starts several
-    of its turns: every share's first), or None."""
+    ``legs``: the :class:`Legs` driven so far (the same leg starts several turns: every
+    share's first); None: a new one."""
+    legs = _legs_of(links, R, legs)
     factor, penalty, budget, toward = bound
     unions: list = []
     directions: list = []
@@ -502,14 +568,8 @@ def _turn(
     for leg in range(TURN_LEGS):
         d = first if leg % 2 == 0 else -first
         side = turn if d > 0 else -turn  # both legs turn the heading the same way
-        key = (cur, side, d)
-        known = None if legs is None else legs.get(key)
-        if known is None:
-            got = _leg(links, cur, R, side, d, there)
-            known = got, union_longd(got[0][0]) if got else 0.0
-            if legs is not None:
-                legs[key] = known
-        got, piece = known
+        got = legs.leg(cur, side, d, there)
+        piece = legs.piece(cur, side, d) if got else 0.0
         if share < 1.0 and got and not there(got[-1][1]):
             got = got[: max(1, math.ceil(share * len(got)))]
         stuck = stuck + 1 if not got else 0
@@ -574,6 +634,7 @@ def arc_pairs(
     escaping: bool = True,
     budget: float = math.inf,
     every: bool = False,
+    legs: Legs | None = None,
 ) -> list[tuple]:
     """:func:`escape_pairs` of the scenario's tight arcs: out of the start (if ``ends`` is
     ``"both"``) and into the goal (``"both"`` or ``"goal"``), cheapest first; for a robot
@@ -591,18 +652,20 @@ def arc_pairs(
     seconds), its turn-arounds with whole legs from the nearest start, or if ``every``, those
     of every share of :data:`IMPROVE_SHARES` from every start (``every`` of
     :func:`turn_arounds`), none through which a plan would cost more than ``budget`` (m: the
-    found plan's).
+    found plan's). ``legs``: the :class:`Legs` driven so far in this planning call, to reuse
+    (None: a new one; the same pairs).
     """
     robot = scenario.robot
     R = robot.min_turning_radius
-    starts = tight_arcs(links, scenario.start, R) if ends == "both" else []
-    goals = tight_arcs(links, scenario.goal, R, into=True)
+    legs = _legs_of(links, R, legs)
+    starts = tight_arcs(links, scenario.start, R, legs=legs) if ends == "both" else []
+    goals = tight_arcs(links, scenario.goal, R, into=True, legs=legs)
     if not robot.reverse:
         return escape_pairs(starts, goals, scenario.start, scenario.goal, R)
     rf, cp = reverse_factor, cusp_penalty
     start, goal = Pose(*scenario.start), Pose(*scenario.goal)
     if ends == "both":
-        starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True)]
+        starts += [reversed_arc(a, rf, cp) for a in tight_arcs(links, start, R, into=True, legs=legs)]
         starts += [h for d in (1, -1) if escaping for h in hops(links, start, robot.L, False, d, rf)]
     turning = abs(wrap_ieee(goal.theta - start.theta)) > TURN_AROUND_FROM
     if escaping:
@@ -611,11 +674,11 @@ def arc_pairs(
         shares = IMPROVE_SHARES if every else TURN_SHARES[:1]
     near = IMPROVE_NEAR if every else WHOLE_TURN
     if ends == "both" and turning:
-        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares, every, budget, goal, near)
-    goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R)]
+        starts += turn_arounds(links, start, goal.theta, R, rf, cp, shares, every, budget, goal, near, legs)
+    goals += [reversed_arc(a, rf, cp) for a in tight_arcs(links, goal, R, legs=legs)]
     goals += [h for d in (1, -1) if escaping for h in hops(links, goal, robot.L, True, d, rf)]
     if turning:
-        back = turn_arounds(links, goal, start.theta, R, rf, cp, shares, every, budget, start, near)
+        back = turn_arounds(links, goal, start.theta, R, rf, cp, shares, every, budget, start, near, legs)
         goals += [reversed_arc(a, rf, cp) for a in back]
     pairs = escape_pairs(starts, goals, start, goal, R, True)
     return _interleaved(pairs) if escaping else pairs
@@ -653,6 +716,7 @@ def improve_with_arcs(
     schedule: Schedule = SCHEDULE,
     reverse_factor: float | None = None,
     cusp_penalty: float = 0.0,
+    legs: Legs | None = None,
 ) -> Plan:
     """A cheaper plan through tight arcs at its ends, or ``plan`` itself.
 
@@ -666,10 +730,12 @@ def improve_with_arcs(
     once ``deadline`` (a :func:`time.perf_counter` value) has passed: the best plan so far.
 
     A robot that may reverse (``scenario.robot.reverse``, ``reverse_factor`` given):
-    :func:`_improve_reversing`.
+    :func:`_improve_reversing`. ``legs``: the :class:`Legs` driven so far in this planning
+    call, to reuse (None: a new one; the same plan).
     """
     if scenario.robot.reverse and reverse_factor is not None:
-        return _improve_reversing(scenario, links, plan, t0, deadline, schedule, reverse_factor, cusp_penalty)
+        args = (schedule, reverse_factor, cusp_penalty, legs)
+        return _improve_reversing(scenario, links, plan, t0, deadline, *args)
     R = scenario.robot.min_turning_radius
     s, g = Pose(*scenario.start), Pose(*scenario.goal)
     if not plan.cost > schedule.improve_gap * dubins_length_scalar(*s, *g, R):
@@ -677,7 +743,8 @@ def improve_with_arcs(
     if time.perf_counter() > deadline:
         return plan
     ws = links.ws
-    pairs = escape_pairs(tight_arcs(links, s, R), tight_arcs(links, g, R, into=True), s, g, R)
+    legs = _legs_of(links, R, legs)
+    pairs = escape_pairs(tight_arcs(links, s, R, legs=legs), tight_arcs(links, g, R, True, legs), s, g, R)
     best = plan
     for est, a, b in pairs:
         if est >= best.cost:
@@ -701,6 +768,7 @@ def _improve_reversing(
     schedule: Schedule,
     rf: float,
     cp: float,
+    legs: Legs | None = None,
 ) -> Plan:
     """:func:`improve_with_arcs` for a robot that may reverse: the arcs of :func:`arc_pairs`
     (tight arcs either way, hops, turn-arounds) at both ends, joined by the paper's direct
@@ -723,7 +791,7 @@ def _improve_reversing(
         return plan
     ws = links.ws
     every = len(plan.cusps) >= MULTI_POINT
-    pairs = arc_pairs(scenario, links, "both", rf, cp, escaping=False, budget=best_w, every=every)
+    pairs = arc_pairs(scenario, links, "both", rf, cp, escaping=False, budget=best_w, every=every, legs=legs)
     tries = IMPROVE_TRIES * (len(IMPROVE_NEAR) if every else 1)  # as many per tolerance
     for est, a, b in pairs[:tries]:
         if est >= best_w:

@@ -59,7 +59,7 @@ from ..schedule import SCHEDULE, Schedule
 from ..validity import Workspace
 from .astar import LatticeAStar
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions
-from .escape import arc_pairs, improve_with_arcs, join_arcs
+from .escape import Legs, arc_pairs, improve_with_arcs, join_arcs
 from .primitives import max_reach, primitive_set
 from .reverse import by_runs
 from .shortcut import shortcut_plan
@@ -476,6 +476,7 @@ def _escape(
     t0: float,
     schedule=SCHEDULE,
     progress=None,
+    legs: Legs | None = None,
 ) -> Plan:
     """Search again between the inner poses of tight arcs
     (:func:`segplan.planning.lattice.escape.arc_pairs` of ``exc.escapable``), the cheapest
@@ -495,9 +496,10 @@ def _escape(
     any machine; k-turn-008's turn-around joins at once, after which its hops would have
     taken 0.3 s each), while a pair's estimate is below the best plan's search cost, and the
     cheapest plan (search cost) is returned. A forward robot's escapes return
-    the first plan, as before.
+    the first plan, as before. ``legs``: the call's :class:`segplan.planning.lattice.escape.Legs`
+    (None: a new one; the same pairs).
     """
-    pairs = arc_pairs(scenario, links, exc.escapable, *_reverse_costs(options, scenario))
+    pairs = arc_pairs(scenario, links, exc.escapable, *_reverse_costs(options, scenario), legs=legs)
     pairs = pairs[: schedule.max_escapes]
     used = exc.expanded
     tries = 0
@@ -563,14 +565,16 @@ def _escape(
 QUICK_EXPANSIONS = 1000
 
 
-def _quick_then_escape(search, scenario, links, options, limit, deadline, t0, schedule, progress) -> Plan:
+def _quick_then_escape(
+    search, scenario, links, options, limit, deadline, t0, schedule, progress, legs
+) -> Plan:
     """A reversing robot's lattice search in stages: ``search(QUICK_EXPANSIONS)``; if that is
     cut by the expansions, the escapes (:func:`_escape`: hops, arcs either way and
     turn-arounds, :mod:`segplan.planning.lattice.escape`), whose multi-point turns the
     lattice's primitives cannot make in a corridor narrower than two turning radii (it
     searched such floors for seconds and failed on 15 of 94); if none joins, the search
     again with the rest of ``limit``. A search that ends otherwise is the answer (a failure
-    raised as it was)."""
+    raised as it was). ``legs``: the call's :class:`segplan.planning.lattice.escape.Legs`."""
     try:
         return search(QUICK_EXPANSIONS)
     except NoPathError as exc:
@@ -578,7 +582,7 @@ def _quick_then_escape(search, scenario, links, options, limit, deadline, t0, sc
             raise
         exc.escapable = "both"
         try:
-            return _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress)
+            return _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress, legs)
         except NoPathError as again:
             if again.reason == "time" or again.expanded >= limit:
                 raise
@@ -609,7 +613,15 @@ LOOP_EXPANSIONS = 256
 
 
 def _repair_loops(
-    scenario, links: LinkModel, plan: Plan, options: dict, deadline: float, t0: float, schedule, progress
+    scenario,
+    links: LinkModel,
+    plan: Plan,
+    options: dict,
+    deadline: float,
+    t0: float,
+    schedule,
+    progress,
+    legs=None,
 ) -> Plan:
     """A shorter forward plan through a tight loop at an end, or ``plan`` itself.
 
@@ -621,7 +633,8 @@ def _repair_loops(
     least :data:`LOOP_TURN` are searched between, the cheapest estimates first, at most
     :data:`LOOP_TRIES` of them and :data:`LOOP_EXPANSIONS` expansions each (counted, so the
     answer is the same on any machine), within ``deadline``; the cheapest plan (LONGD [1])
-    is kept. A robot that may reverse makes its loops with a cusp (its turn-arounds)."""
+    is kept. A robot that may reverse makes its loops with a cusp (its turn-arounds). ``legs``:
+    the call's :class:`segplan.planning.lattice.escape.Legs` (None: a new one)."""
     s, g = Pose(*scenario.start), Pose(*scenario.goal)
     R = scenario.robot.min_turning_radius
     if scenario.robot.reverse or not plan.cost > LOOP_GAP * dubins_length_scalar(*s, *g, R):
@@ -630,7 +643,7 @@ def _repair_loops(
     def loops(arc, end: Pose) -> bool:
         return arc is not None and abs(wrap_ieee(arc.inner.theta - end.theta)) >= LOOP_TURN
 
-    pairs = [p for p in arc_pairs(scenario, links, "both") if loops(p[1], s) or loops(p[2], g)]
+    pairs = [p for p in arc_pairs(scenario, links, "both", legs=legs) if loops(p[1], s) or loops(p[2], g)]
     best, used = plan, plan.expanded
     for est, a, b in pairs[:LOOP_TRIES]:
         left = deadline - time.perf_counter()
@@ -723,22 +736,23 @@ def lattice_search(
         )
         return plan
 
+    legs = Legs(links, scenario.robot.min_turning_radius)  # the tight circles' legs, each driven once
     try:
         if scenario.robot.reverse and escapes and limit > QUICK_EXPANSIONS:
-            args = (scenario, links, options, limit, deadline, t0, schedule, progress)
+            args = (scenario, links, options, limit, deadline, t0, schedule, progress, legs)
             plan = _quick_then_escape(search, *args)
         else:
             plan = search(max_expansions)
     except NoPathError as exc:
         if not (escapes and getattr(exc, "escapable", "")):
             raise
-        plan = _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress)
+        plan = _escape(scenario, links, exc, options, limit, deadline, t0, schedule, progress, legs)
     if escapes:
-        plan = improve_with_arcs(scenario, links, plan, t0, deadline, schedule)
-        plan = _repair_loops(scenario, links, plan, options, deadline, t0, schedule, progress)
+        plan = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, legs=legs)
+        plan = _repair_loops(scenario, links, plan, options, deadline, t0, schedule, progress, legs)
         if alternatives is not None and scenario.robot.reverse:
             costs = _reverse_costs(options, scenario)
-            better = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, *costs)
+            better = improve_with_arcs(scenario, links, plan, t0, deadline, schedule, *costs, legs)
             if better is not plan:
                 alternatives.append(better)
     return plan, links
