@@ -15,7 +15,7 @@ import segplan
 from segplan.floor.scenario import make_scenario
 from segplan.model.pose import Pose
 from segplan.planning.context import workspace_of
-from segplan.planning.lattice import escape
+from segplan.planning.lattice import escape, legs
 from segplan.planning.lattice.reverse import weighted_cost
 from segplan.planning.links import LinkModel
 from segplan.planning.plan import link_ends, union_longd
@@ -309,25 +309,25 @@ def _leg_key(leg) -> list:
 
 @pytest.mark.parametrize("floor", [("k-turn", 4), ("dead-end", 10), ("bay-out", 3)])
 def test_legs_kept_for_reuse_answer_as_a_leg_driven_afresh(floor):
-    # escape.Legs keeps each leg it drives; a later request with another stop or length is cut
+    # legs.Legs keeps each leg it drives; a later request with another stop or length is cut
     # from it or driven further: union for union what a Legs driven for that request alone gives
     sc = rs.with_reverse(rf.reverse_floor(*floor))
     links = LinkModel(workspace_of(sc))
     R = sc.robot.min_turning_radius
-    kept = escape.Legs(links, R)
+    kept = legs.Legs(links, R)
     rng = np.random.default_rng(26)
     starts = [Pose(*sc.start), Pose(*sc.goal)]
     for _ in range(60):
         p = starts[rng.integers(2)]
         side, direction = int(rng.choice([1, -1])), int(rng.choice([1, -1]))
-        steps = int(rng.integers(1, escape.LEG_STEPS + 1))
+        steps = int(rng.integers(1, legs.LEG_STEPS + 1))
         target, tol = float(rng.uniform(-math.pi, math.pi)), float(rng.uniform(0.05, 1.0))
 
         def stop(q, target=target, tol=tol):
             return abs(math.remainder(q.theta - target, 2 * math.pi)) < tol
 
         got = kept.leg(p, side, direction, stop, steps)
-        fresh = escape.Legs(links, R).leg(p, side, direction, stop, steps)
+        fresh = legs.Legs(links, R).leg(p, side, direction, stop, steps)
         assert _leg_key(got) == _leg_key(fresh)
         if got:
             assert kept.piece(p, side, direction) == union_longd(got[0][0])

@@ -16,9 +16,8 @@ the pose). :func:`escape_pairs` orders the combinations of a start arc and a goa
 again (at its first resolution) between the inner poses of each in turn when its search runs
 out of states, and puts the arcs around the plan it finds (:func:`join_arcs`).
 :func:`improve_with_arcs` joins such arcs by one union where that beats a found plan.
-A planning call drives each leg along a tight circle once (:class:`Legs`, made by the planner
-and passed to all of these): the escapes, the improvement and every tolerance of its
-turn-arounds ask for the same legs again.
+The arcs and the turn-arounds are made of legs along tight circles
+(:class:`segplan.planning.lattice.legs.Legs`: a planning call drives each leg once).
 
 **A robot that may reverse** (issue 26; :mod:`segplan.planning.lattice.reverse`) also has
 the arcs driven backwards (:func:`reversed_arc`: the same unions, the other direction) and
@@ -39,13 +38,13 @@ import math
 import time
 from dataclasses import dataclass, replace
 
-from ...model.pose import Pose, arc_end, intrinsic_interval, wrap_ieee
-from ...model.union import Union
+from ...model.pose import Pose, wrap_ieee
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
 from ..plan import Plan, link_ends, plain_directions, union_longd, unions_longd
 from ..reeds_shepp import reeds_shepp_length
 from ..schedule import SCHEDULE, Schedule
+from .legs import LEG_STEPS, RADIUS_FACTORS, STEP, Legs
 from .reverse import weighted_cost
 
 __all__ = [
@@ -67,7 +66,6 @@ __all__ = [
     "TURN_SHIFTS",
     "WHOLE_TURN",
     "Arc",
-    "Legs",
     "arc_pairs",
     "escape_pairs",
     "hops",
@@ -78,12 +76,8 @@ __all__ = [
     "turn_arounds",
 ]
 
-#: Turn of one union of an arc (radians).
-STEP = math.radians(11.25)
 #: Turns (radians) at which an arc's end is offered, while its unions stay free.
 TURNS = tuple(math.radians(d) for d in (45.0, 90.0, 135.0, 180.0, 225.0, 270.0))
-#: Radii tried (times ``R``): the smallest whose union keeps the steering limit is used.
-RADIUS_FACTORS = (1.01, 1.03, 1.06, 1.1)
 #: A hop's other pose: distances along the end's heading (times ``L``), ...
 HOP_AHEAD = (0.5, 1.0, 1.5, 2.0, 2.5)
 #: ... offsets across it (times ``L``; positive to the left) ...
@@ -133,12 +127,6 @@ class Arc:
         return self.first if self.into else self.last
 
 
-def _circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
-    """:func:`segplan.model.pose.arc_end` of ``p`` as a Pose, its heading in ``[-pi, pi]``."""
-    x, y, th = arc_end(p.x, p.y, p.theta, rho, side, turn)
-    return Pose(x, y, wrap_ieee(th))
-
-
 def tight_arcs(links: LinkModel, pose, R: float, into: bool = False, legs: Legs | None = None) -> list[Arc]:
     """Free arcs out of ``pose`` (``into=False``) or into it (``into=True``), both sides.
 
@@ -162,7 +150,7 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False, legs: Legs 
         One per side and per turn of :data:`TURNS` reached with every union free.
     """
     p = Pose(*pose)
-    legs = _legs_of(links, R, legs)
+    legs = Legs.checked(legs, links, R)
     out = []
     per = [int(round(t / STEP)) for t in TURNS]
     for side in (1, -1):
@@ -306,106 +294,11 @@ IMPROVE_NEAR = (0.5 * STEP, math.radians(30.0), math.radians(60.0))
 WHOLE_TURN = IMPROVE_NEAR[:1]
 #: Legs of a turn-around at most (:func:`turn_arounds`).
 TURN_LEGS = 12
-#: Unions of one leg at most (a leg of 32 x :data:`STEP` turns a full circle).
-LEG_STEPS = 32
 
 
 def _never(pose: Pose) -> bool:
-    """A leg's ``stop`` that never stops it (:meth:`Legs.leg`)."""
+    """A leg's ``stop`` that never stops it (:meth:`segplan.planning.lattice.legs.Legs.leg`)."""
     return False
-
-
-def _legs_of(links: LinkModel, R: float, legs: Legs | None) -> Legs:
-    """``legs``, checked to be of ``links`` and ``R``; a new :class:`Legs` if None."""
-    if legs is None:
-        return Legs(links, R)
-    if legs.links is not links or legs.R != float(R):
-        raise ValueError("legs were driven with another link model or turning radius")
-    return legs
-
-
-class Legs:
-    """The free legs along tight circles driven so far in one planning call, each driven once.
-
-    A leg (:meth:`leg`) is the chain of congruent unions along the tight circle on one side of
-    a pose, driven one way; the same leg is asked for many times over (the turn-arounds of
-    every tolerance of :data:`IMPROVE_NEAR`, share of :data:`IMPROVE_SHARES` and start, the
-    escapes' and the improvement's arcs: 1663 requests of 566 legs on the reverse study's
-    k-turn-004), with other stops and lengths. Each is kept by where it starts, its side and
-    its direction, with whether it ended at a union that is not free; a request is answered
-    from it (cut where its own ``stop`` holds or after its own ``steps``) and driven further
-    only beyond what was driven: every answer is the one a leg driven afresh gives, union for
-    union. Made by the caller for one scenario and link model (``links``, ``R``) and passed
-    on; caching is the caller's choice (a fresh one per call gives the same arcs).
-    """
-
-    def __init__(self, links: LinkModel, R: float):
-        self.links, self.R = links, float(R)
-        self._known: dict = {}  # (p, side, direction) -> [rho, [(union, pose), ...], ended, piece]
-
-    def leg(self, p: Pose, side: int, direction: int, stop, steps: int = LEG_STEPS) -> list[tuple]:
-        """``(union, pose)`` of the free unions along the tight circle on ``side`` of ``p``
-        (the smallest radius of :data:`RADIUS_FACTORS` whose first union keeps the steering
-        limit: the shape is the same all along), each turning by :data:`STEP`, driven
-        ``direction``, at most ``steps`` of them, until one is not free or ``stop(pose)``; each
-        union stored as a plan stores its link (module docstring)."""
-        key = (p, side, direction)
-        rec = self._known.get(key)
-        if rec is None:
-            rec = self._known[key] = [self._radius(p, side, direction), [], False, None]
-            rec[2] = rec[0] is None
-        rho, got, ended, _ = rec
-        out: list = []
-        for k, (u, q) in enumerate(got, 1):
-            if k > steps:
-                return out
-            out.append((u, q))
-            if stop(q):
-                return out
-        if ended:
-            return out
-        ws, links = self.links.ws, self.links
-        sign = 1.0 if direction > 0 else -1.0
-        cur = got[-1][1] if got else p
-        u1 = got[0][0] if got else None  # every later union is congruent to it (its frame, moved along)
-        for k in range(len(got) + 1, steps + 1):
-            q = _circle_pose(p, rho, side, sign * k * STEP)
-            a, b = (cur, q) if direction > 0 else (q, cur)
-            geo = None if u1 is None else intrinsic_interval(a, b)
-            if geo is not None and geo[4] < u1.alpha < geo[5]:
-                d, psi, phi0, phi1, _, _ = geo
-                u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
-            else:
-                u = links.union(a, b)
-            if u is None or not ws.union_free(u):
-                rec[2] = True
-                break
-            u1 = u1 or u
-            got.append((u, q))
-            out.append((u, q))
-            cur = q
-            if stop(q):
-                break
-        return out
-
-    def piece(self, p: Pose, side: int, direction: int) -> float:
-        """LONGD [1] of the first union of a leg asked for before (every union of it is
-        congruent: it stands for each); 0 for a leg without one."""
-        rec = self._known[(p, side, direction)]
-        if rec[3] is None:
-            rec[3] = union_longd(rec[1][0][0]) if rec[1] else 0.0
-        return rec[3]
-
-    def _radius(self, p: Pose, side: int, direction: int) -> float | None:
-        """The smallest radius of :data:`RADIUS_FACTORS` times ``R`` whose first union keeps
-        the steering limit; None if none does."""
-        links, sign = self.links, 1.0 if direction > 0 else -1.0
-        for f in RADIUS_FACTORS:
-            q = _circle_pose(p, f * self.R, side, sign * STEP)
-            u = links.union(p, q) if direction > 0 else links.union(q, p)
-            if u is not None and links.ws.curvature_ok(u):
-                return f * self.R
-        return None
 
 
 def turn_arounds(
@@ -457,7 +350,7 @@ def turn_arounds(
     ``legs``: the legs driven so far in this planning call (:class:`Legs`, of ``links`` and
     ``R``), to reuse; None: a new one, shared by the turns of every tolerance (the same arcs)."""
     p = Pose(*pose)
-    legs = _legs_of(links, R, legs)
+    legs = Legs.checked(legs, links, R)
     out: list = []
     for tolerance in near:
         out += _turn_arounds_near(
@@ -558,7 +451,7 @@ def _turn(
     ``penalty`` per change of direction exceeds ``budget`` (:func:`turn_arounds`' ``every``).
     ``legs``: the :class:`Legs` driven so far (the same leg starts several turns: every
     share's first); None: a new one."""
-    legs = _legs_of(links, R, legs)
+    legs = Legs.checked(legs, links, R)
     factor, penalty, budget, toward = bound
     unions: list = []
     directions: list = []
@@ -657,7 +550,7 @@ def arc_pairs(
     """
     robot = scenario.robot
     R = robot.min_turning_radius
-    legs = _legs_of(links, R, legs)
+    legs = Legs.checked(legs, links, R)
     starts = tight_arcs(links, scenario.start, R, legs=legs) if ends == "both" else []
     goals = tight_arcs(links, scenario.goal, R, into=True, legs=legs)
     if not robot.reverse:
@@ -743,7 +636,7 @@ def improve_with_arcs(
     if time.perf_counter() > deadline:
         return plan
     ws = links.ws
-    legs = _legs_of(links, R, legs)
+    legs = Legs.checked(legs, links, R)
     pairs = escape_pairs(tight_arcs(links, s, R, legs=legs), tight_arcs(links, g, R, True, legs), s, g, R)
     best = plan
     for est, a, b in pairs:

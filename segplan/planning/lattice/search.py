@@ -59,7 +59,8 @@ from ..schedule import SCHEDULE, Schedule
 from ..validity import Workspace
 from .astar import LatticeAStar
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions
-from .escape import Legs, arc_pairs, improve_with_arcs, join_arcs
+from .escape import arc_pairs, improve_with_arcs, join_arcs
+from .legs import Legs
 from .primitives import max_reach, primitive_set
 from .reverse import by_runs
 from .shortcut import shortcut_plan
@@ -496,7 +497,7 @@ def _escape(
     any machine; k-turn-008's turn-around joins at once, after which its hops would have
     taken 0.3 s each), while a pair's estimate is below the best plan's search cost, and the
     cheapest plan (search cost) is returned. A forward robot's escapes return
-    the first plan, as before. ``legs``: the call's :class:`segplan.planning.lattice.escape.Legs`
+    the first plan, as before. ``legs``: the call's :class:`segplan.planning.lattice.legs.Legs`
     (None: a new one; the same pairs).
     """
     pairs = arc_pairs(scenario, links, exc.escapable, *_reverse_costs(options, scenario), legs=legs)
@@ -574,7 +575,7 @@ def _quick_then_escape(
     lattice's primitives cannot make in a corridor narrower than two turning radii (it
     searched such floors for seconds and failed on 15 of 94); if none joins, the search
     again with the rest of ``limit``. A search that ends otherwise is the answer (a failure
-    raised as it was). ``legs``: the call's :class:`segplan.planning.lattice.escape.Legs`."""
+    raised as it was). ``legs``: the call's :class:`segplan.planning.lattice.legs.Legs`."""
     try:
         return search(QUICK_EXPANSIONS)
     except NoPathError as exc:
@@ -634,7 +635,7 @@ def _repair_loops(
     :data:`LOOP_TRIES` of them and :data:`LOOP_EXPANSIONS` expansions each (counted, so the
     answer is the same on any machine), within ``deadline``; the cheapest plan (LONGD [1])
     is kept. A robot that may reverse makes its loops with a cusp (its turn-arounds). ``legs``:
-    the call's :class:`segplan.planning.lattice.escape.Legs` (None: a new one)."""
+    the call's :class:`segplan.planning.lattice.legs.Legs` (None: a new one)."""
     s, g = Pose(*scenario.start), Pose(*scenario.goal)
     R = scenario.robot.min_turning_radius
     if scenario.robot.reverse or not plan.cost > LOOP_GAP * dubins_length_scalar(*s, *g, R):
