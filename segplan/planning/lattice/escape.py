@@ -157,7 +157,7 @@ def tight_arcs(links: LinkModel, pose, R: float, into: bool = False, legs: Legs 
         # into the pose: the circle behind it, driven forwards to it (a leg out of it, backwards)
         got = legs.leg(p, side, -1 if into else 1, _never, per[-1])
         unions, cost = [], 0.0
-        piece = legs.piece(p, side, -1 if into else 1) if got else 0.0  # every later union is congruent
+        piece = legs.piece(p, side, -1 if into else 1)  # every later union is congruent
         for k, (u, cur) in enumerate(got, 1):
             unions.append(u)
             cost += piece
@@ -462,7 +462,7 @@ def _turn(
         d = first if leg % 2 == 0 else -first
         side = turn if d > 0 else -turn  # both legs turn the heading the same way
         got = legs.leg(cur, side, d, there)
-        piece = legs.piece(cur, side, d) if got else 0.0
+        piece = legs.piece(cur, side, d)
         if share < 1.0 and got and not there(got[-1][1]):
             got = got[: max(1, math.ceil(share * len(got)))]
         stuck = stuck + 1 if not got else 0

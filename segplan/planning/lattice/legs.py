@@ -17,6 +17,7 @@ stops and lengths.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 from ...model.pose import Pose, arc_end, intrinsic_interval, wrap_ieee
 from ...model.union import Union
@@ -37,6 +38,24 @@ def circle_pose(p: Pose, rho: float, side: int, turn: float) -> Pose:
     """:func:`segplan.model.pose.arc_end` of ``p`` as a Pose, its heading in ``[-pi, pi]``."""
     x, y, th = arc_end(p.x, p.y, p.theta, rho, side, turn)
     return Pose(x, y, wrap_ieee(th))
+
+
+@dataclass
+class _Leg:
+    """One leg as far as it was driven: its start, side, direction and radius (None: no radius
+    of :data:`RADIUS_FACTORS` keeps the steering limit), its ``(union, pose)`` so far, whether
+    it ended at a union that is not free, and its first union's LONGD once asked for."""
+
+    start: Pose
+    side: int
+    direction: int
+    rho: float | None
+    got: list = field(default_factory=list)
+    ended: bool = False
+    piece: float | None = None
+
+    def __post_init__(self):
+        self.ended = self.ended or self.rho is None
 
 
 class Legs:
@@ -67,60 +86,62 @@ class Legs:
 
     def __init__(self, links: LinkModel, R: float):
         self.links, self.R = links, float(R)
-        self._known: dict = {}  # (p, side, direction) -> [rho, [(union, pose), ...], ended, piece]
+        self._known: dict[tuple, _Leg] = {}  # by (pose, side, direction)
 
     def leg(self, p: Pose, side: int, direction: int, stop, steps: int = LEG_STEPS) -> list[tuple]:
         """``(union, pose)`` of the free unions along the tight circle on ``side`` of ``p``
         (the smallest radius of :data:`RADIUS_FACTORS` whose first union keeps the steering
         limit: the shape is the same all along), each turning by :data:`STEP`, driven
         ``direction``, at most ``steps`` of them, until one is not free or ``stop(pose)``; each
-        union stored as a plan stores its link (a plan's, :attr:`segplan.Plan.directions`)."""
-        key = (p, side, direction)
-        rec = self._known.get(key)
-        if rec is None:
-            rec = self._known[key] = [self._radius(p, side, direction), [], False, None]
-            rec[2] = rec[0] is None
-        rho, got, ended, _ = rec
+        union stored as a plan stores its link (:attr:`segplan.Plan.directions`: a reverse
+        link is the forward union from its far node to its near one)."""
+        kept = self._kept(p, side, direction)
         out: list = []
-        for k, (u, q) in enumerate(got, 1):
-            if k > steps:
-                return out
-            out.append((u, q))
-            if stop(q):
-                return out
-        if ended:
-            return out
-        ws, links = self.links.ws, self.links
-        sign = 1.0 if direction > 0 else -1.0
-        cur = got[-1][1] if got else p
-        u1 = got[0][0] if got else None  # every later union is congruent to it (its frame, moved along)
-        for k in range(len(got) + 1, steps + 1):
-            q = circle_pose(p, rho, side, sign * k * STEP)
-            a, b = (cur, q) if direction > 0 else (q, cur)
-            geo = None if u1 is None else intrinsic_interval(a, b)
-            if geo is not None and geo[4] < u1.alpha < geo[5]:
-                d, psi, phi0, phi1, _, _ = geo
-                u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
-            else:
-                u = links.union(a, b)
-            if u is None or not ws.union_free(u):
-                rec[2] = True
-                break
-            u1 = u1 or u
-            got.append((u, q))
-            out.append((u, q))
-            cur = q
-            if stop(q):
+        while len(out) < steps and (len(out) < len(kept.got) or self._drive(kept)):
+            out.append(kept.got[len(out)])
+            if stop(out[-1][1]):
                 break
         return out
 
     def piece(self, p: Pose, side: int, direction: int) -> float:
         """LONGD [1] of the first union of a leg asked for before (every union of it is
         congruent: it stands for each); 0 for a leg without one."""
-        rec = self._known[(p, side, direction)]
-        if rec[3] is None:
-            rec[3] = union_longd(rec[1][0][0]) if rec[1] else 0.0
-        return rec[3]
+        kept = self._known[(p, side, direction)]
+        if kept.piece is None:
+            kept.piece = union_longd(kept.got[0][0]) if kept.got else 0.0
+        return kept.piece
+
+    def _kept(self, p: Pose, side: int, direction: int) -> _Leg:
+        """The kept leg of ``p``, ``side`` and ``direction``, none of its unions driven yet if new."""
+        key = (p, side, direction)
+        kept = self._known.get(key)
+        if kept is None:
+            kept = self._known[key] = _Leg(p, side, direction, self._radius(p, side, direction))
+        return kept
+
+    def _drive(self, kept: _Leg) -> bool:
+        """Drive ``kept`` one union further; False (and the leg ended) if that union is not free."""
+        if kept.ended:
+            return False
+        links, p, side = self.links, kept.start, kept.side
+        k = len(kept.got) + 1
+        q = circle_pose(p, kept.rho, side, (1.0 if kept.direction > 0 else -1.0) * k * STEP)
+        cur = kept.got[-1][1] if kept.got else p
+        a, b = (cur, q) if kept.direction > 0 else (q, cur)
+        u1 = (
+            kept.got[0][0] if kept.got else None
+        )  # every later union is congruent to it (its frame, moved along)
+        geo = None if u1 is None else intrinsic_interval(a, b)
+        if geo is not None and geo[4] < u1.alpha < geo[5]:
+            d, psi, phi0, phi1, _, _ = geo
+            u = Union.from_intrinsic(a, b, u1.alpha, u1.L, d, psi, phi0, phi1)
+        else:
+            u = links.union(a, b)
+        if u is None or not links.ws.union_free(u):
+            kept.ended = True
+            return False
+        kept.got.append((u, q))
+        return True
 
     def _radius(self, p: Pose, side: int, direction: int) -> float | None:
         """The smallest radius of :data:`RADIUS_FACTORS` times ``R`` whose first union keeps
