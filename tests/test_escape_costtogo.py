@@ -30,12 +30,14 @@ from segplan import (
     plan_poses,
     plan_scenario,
 )
+from segplan.planning.context import workspace_of
 from segplan.planning.dubins import dubins_length_scalar
 from segplan.planning.lattice.clearance import ClearanceGrid
 from segplan.planning.lattice.escape import (
     RADIUS_FACTORS,
     STEP,
     TURNS,
+    hop_pairs,
     improve_with_arcs,
     tight_arcs,
 )
@@ -238,7 +240,8 @@ def test_escape_searches_run_at_the_first_resolution_only(monkeypatch):
 
 def test_escape_searches_keep_the_callers_schedule(monkeypatch):
     """The searches between the arcs' ends run with the caller's schedule: at most its
-    ``max_escapes`` of them, each with that schedule."""
+    ``max_escapes`` of them, each with that schedule; then the hops' (``HOP_ESCAPES`` at most),
+    with it too."""
     calls = []
     inner = lattice_module._lattice_search
 
@@ -250,7 +253,9 @@ def test_escape_searches_keep_the_callers_schedule(monkeypatch):
     schedule = dataclasses.replace(SCHEDULE, max_escapes=2, guide_after=32)
     with pytest.raises(NoPathError):
         lattice_search(_facing_wall(0.35), schedule=schedule)  # no forward plan: escapes run out
-    assert len(calls) == 1 + 2 and all(s is schedule for s in calls)
+    sc = _facing_wall(0.35)
+    hopping = min(lattice_module.HOP_ESCAPES, len(hop_pairs(sc, LinkModel(workspace_of(sc)))))
+    assert hopping > 0 and len(calls) == 1 + 2 + hopping and all(s is schedule for s in calls)
 
 
 def test_random_floor_any_114_needs_the_arcs():

@@ -16,6 +16,8 @@ the pose). :func:`escape_pairs` orders the combinations of a start arc and a goa
 again (at its first resolution) between the inner poses of each in turn when its search runs
 out of states, and puts the arcs around the plan it finds (:func:`join_arcs`).
 :func:`improve_with_arcs` joins such arcs by one union where that beats a found plan.
+Where no pair of arcs joins, a forward robot's planner tries its hops last (:func:`hop_pairs`:
+single forward unions to poses off the lattice's headings and offsets, below).
 The arcs and the turn-arounds are made of legs along tight circles
 (:class:`segplan.planning.lattice.legs.Legs`: a planning call drives each leg once).
 
@@ -68,6 +70,7 @@ __all__ = [
     "Arc",
     "arc_pairs",
     "escape_pairs",
+    "hop_pairs",
     "hops",
     "improve_with_arcs",
     "join_arcs",
@@ -575,6 +578,25 @@ def arc_pairs(
         goals += [reversed_arc(a, rf, cp) for a in back]
     pairs = escape_pairs(starts, goals, start, goal, R, True)
     return _interleaved(pairs) if escaping else pairs
+
+
+def hop_pairs(scenario, links: LinkModel) -> list[tuple]:
+    """A forward robot's last escape: :func:`escape_pairs` of its forward hops (:func:`hops`)
+    out of the start and into the goal, cheapest first.
+
+    Tried only where every pair of tight arcs failed (:func:`segplan.planning.lattice.search._escape`),
+    at both ends whatever the failed search's ``escapable``: a hop ends at a pose whose heading or
+    offset the lattice laid out at the start does not have, and the search from it lays its
+    lattice there. Found on the floor-kinds study (``segplan.studies.floor_kinds``, floors OMPL's
+    BIT* solves): clutter-097's start runs along a wall past an obstacle in a gap that only a
+    heading off the lattice's threads (exhausted after 29 expansions; a hop aside joins), and
+    robots-086's goal looked enclosed to the start's lattice (3 states reach it), where a hop
+    out of the start, turned 30 deg, joins it."""
+    L = scenario.robot.L
+    starts = hops(links, scenario.start, L, False, 1)
+    goals = hops(links, scenario.goal, L, True, 1)
+    pairs = escape_pairs(starts, goals, scenario.start, scenario.goal, scenario.robot.min_turning_radius)
+    return [p for p in pairs if p[1] is None or p[2] is None]
 
 
 def _interleaved(pairs: list[tuple]) -> list[tuple]:

@@ -26,7 +26,9 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
   states (or the goal looks enclosed), the planner asks for the tight arcs of short unions out
   of the start and into the goal, which turn closer to ``R`` than any primitive, and searches
   again between their ends; a plan far above the Dubins length tries the direct union
-  between such arcs' ends.
+  between such arcs' ends. Where no pair of arcs joins, a forward robot's last tries start
+  or end with a hop (a single union to a pose off the lattice's headings and offsets,
+  :func:`~segplan.planning.lattice.escape.hop_pairs`), each probed with :data:`HOP_PROBE`.
 * **Reverse** (a robot that may reverse, issue 26: :mod:`~segplan.planning.lattice.reverse`):
   reverse links in the A*, its costs ``reverse_factor`` and ``cusp_penalty``; the shortcuts
   work within each run of one direction, so the cusps stay where the search put them. Its
@@ -59,7 +61,7 @@ from ..schedule import SCHEDULE, Schedule
 from ..validity import Workspace
 from .astar import LatticeAStar
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions
-from .escape import arc_pairs, improve_with_arcs, join_arcs
+from .escape import arc_pairs, hop_pairs, improve_with_arcs, join_arcs
 from .legs import Legs
 from .primitives import max_reach, primitive_set
 from .reverse import by_runs
@@ -71,6 +73,8 @@ __all__ = [
     "GOAL_RADIUS",
     "LATTICE_MAX_EXPANSIONS",
     "REVERSE_FACTOR",
+    "HOP_ESCAPES",
+    "HOP_PROBE",
     "PROBE_EXPANSIONS",
     "QUICK_EXPANSIONS",
     "lattice_options",
@@ -451,6 +455,18 @@ def _reverse_costs(options: dict, scenario) -> tuple[float, float]:
 #: (:func:`_escape`). Set by hand from dead-end-010 (its one-cusp escapes took 37-160
 #: expansions, its three-cusp ones 400-1900; ``segplan.studies.reverse_floors``), not tuned.
 PROBE_EXPANSIONS = 256
+#: A forward robot's hop pairs (:func:`segplan.planning.lattice.escape.hop_pairs`) searched
+#: between at most, each for at most :data:`HOP_PROBE` expansions, after its arcs' pairs failed
+#: (:func:`_escape`). Set by hand: on the two floors they were made for (clutter-097,
+#: robots-086) the 7th and the 2nd pair joined, in 8 and 79 expansions. A call that fails
+#: pays for them: measured on 2026-12-06 on a forward robot on every 4th of the first 40
+#: floors of the reverse study's dead-end, k-turn and bay-out kinds
+#: (``segplan.studies.reverse_floors``, which a forward robot cannot leave), CPU time to the
+#: ``NoPathError`` 0.01-0.13 s -> 0.01-0.24 s in the bays, 0.04-0.08 s -> 0.36-0.57 s on the
+#: k-turns that failed fast (the others took 0.4-8 s before and about as long after). Not tuned.
+HOP_ESCAPES = 8
+#: Expansions of one search from or to a hop (:data:`HOP_ESCAPES`).
+HOP_PROBE = 128
 
 
 def _search_between(
@@ -497,8 +513,13 @@ def _escape(
     any machine; k-turn-008's turn-around joins at once, after which its hops would have
     taken 0.3 s each), while a pair's estimate is below the best plan's search cost, and the
     cheapest plan (search cost) is returned. A forward robot's escapes return
-    the first plan, as before. ``legs``: the call's :class:`segplan.planning.lattice.legs.Legs`
-    (None: a new one; the same pairs).
+    the first plan, as before; if no pair of its arcs joins (and no limit cut the tries
+    short), the first :data:`HOP_ESCAPES` of its hop pairs
+    (:func:`segplan.planning.lattice.escape.hop_pairs`) are tried, each for at most
+    :data:`HOP_PROBE` expansions, and the first plan is returned (only calls that failed
+    before get there: every plan found before is found as before).
+    ``legs``: the call's :class:`segplan.planning.lattice.legs.Legs` (None: a new one; the
+    same pairs).
     """
     pairs = arc_pairs(scenario, links, exc.escapable, *_reverse_costs(options, scenario), legs=legs)
     pairs = pairs[: schedule.max_escapes]
@@ -508,7 +529,8 @@ def _escape(
     best = None
     until = math.inf  # after the first plan: as many expansions again as it took (below)
     pending = pairs
-    for cap in (PROBE_EXPANSIONS, None) if scenario.robot.reverse else (None,):
+    hopped = []  # a forward robot's hop pairs, once its arcs' pairs failed
+    for cap in (PROBE_EXPANSIONS, None) if scenario.robot.reverse else (None, HOP_PROBE):
         again = []  # the pairs a probe cut short
         for est, a, b in pending:
             if best is not None and not est < best.search_cost:
@@ -540,12 +562,18 @@ def _escape(
                 best = plan
         if best is not None or cut is not None:
             break
-        pending = again
+        if scenario.robot.reverse:
+            pending = again
+        else:
+            pending = hopped = hop_pairs(scenario, links)[:HOP_ESCAPES]
     if best is not None:
         return replace(best, expanded=used, seconds=time.perf_counter() - t0)
     exc.expanded = used
     exc.seconds = time.perf_counter() - t0
-    tried = f"searches between tight arcs at the ends: {tries} of {len(pairs)} tried, none joined"
+    offered = len(pairs) + len(hopped)
+    tried = f"searches between tight arcs at the ends: {tries} of {offered} tried, none joined"
+    if hopped:
+        tried += f" ({len(hopped)} of them from or to hops)"
     if cut is not None:  # the tries were cut short: not a result about the floor
         if cut == "time" or used >= max_expansions:
             limit = f"max_expansions={max_expansions}" if cut == "expansions" else "the time limit"
