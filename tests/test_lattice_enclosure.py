@@ -25,14 +25,16 @@ def _wall_goal():
 
 def test_enclosed_goal_stops_early():
     """The goal's approach tree runs out and the start joins none of it: the search stops
-    ENCLOSED_EXPANSIONS later (a limit, said so), long before max_expansions."""
+    ENCLOSED_EXPANSIONS later (a limit, said so), long before max_expansions; then the
+    escapes' hops try at most HOP_ESCAPES searches of HOP_PROBE expansions."""
     sc = _wall_goal()
     with pytest.raises(NoPathError) as err:
         lt.lattice_search(sc, max_expansions=5000)
     e = err.value
     assert e.reason == "expansions"
     assert "looks enclosed" in str(e) and "not a proof" in str(e)
-    assert e.expanded <= SCHEDULE.enclosure_after + SCHEDULE.enclosed_expansions + 1
+    hops = lt.HOP_ESCAPES * lt.HOP_PROBE
+    assert e.expanded <= SCHEDULE.enclosure_after + SCHEDULE.enclosed_expansions + 1 + hops
     assert e.best is not None and e.best.nodes[0] == sc.start
 
 
