@@ -42,6 +42,8 @@ __all__ = ["GoalApproach", "steerable"]
 #: Frames sampled per pose pair by :func:`steerable`, abscissae (fractions of the span).
 _FRAMES = (np.arange(1, 8) / 8.0)[None, :, None]
 _TAU = np.linspace(0.0, 1.0, 17)[None, None, :]
+#: States of a front whose primitives :meth:`GoalApproach.reach_all` screens at once.
+_FLOOD_CHUNK = 256
 
 
 def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float) -> np.ndarray:
@@ -362,24 +364,32 @@ class GoalApproach:
 
         A superset of the states the approach tree can ever hold (its edges also pass the
         certified test), found at a fraction of its cost: a flood fill over the grid's
-        screen only (the order of the states does not matter for their number).
+        screen only, breadth first, the primitives into every state of a front that share a
+        heading screened at once (the order of the states does not matter for their number,
+        nor for the answer: the set is returned sorted).
         """
-        into, steps_in = self.into, self.steps_in
         seen = {(0, 0, 0)}
-        todo = [(0, 0, 0)]
-        while todo:
-            i, j, h = todo.pop()
-            if not into[h]:
-                continue
-            back = steps_in[h]
-            _, _, bad = self._into(i, j, h)
-            for k in np.flatnonzero(~bad).tolist():
-                prev = (i - int(back[k, 0]), j - int(back[k, 1]), int(back[k, 2]))
-                if prev not in seen:
-                    if len(seen) > limit:
+        front = [(0, 0, 0)]
+        while front:
+            by_heading: dict[int, list] = {}
+            for i, j, h in front:
+                if self.into[h]:
+                    by_heading.setdefault(h, []).append((i, j))
+            front = []
+            for h, ij in by_heading.items():
+                back = self.steps_in[h]
+                for c in range(0, len(ij), _FLOOD_CHUNK):  # bounded memory on a large front
+                    starts = np.asarray(ij[c : c + _FLOOD_CHUNK])[:, None, :] - back[None, :, :2]
+                    pts = self.pts_in[h][None] + self._point(starts)[:, :, None, :]
+                    _, bad = self.grid.screen(pts, self.dl_in[h][None])
+                    s, k = np.nonzero(~bad)  # (state of the front, primitive into it) pairs
+                    pi, pj = starts[s, k, 0].tolist(), starts[s, k, 1].tolist()
+                    for prev in zip(pi, pj, back[k, 2].tolist(), strict=True):
+                        if prev not in seen:
+                            seen.add(prev)
+                            front.append(prev)
+                    if len(seen) > limit + 1:  # more than the goal and ``limit`` others
                         return None
-                    seen.add(prev)
-                    todo.append(prev)
         seen.discard((0, 0, 0))
         return np.array([self.frame.pose(k) for k in sorted(seen)]).reshape(-1, 3)
 
