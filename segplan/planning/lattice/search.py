@@ -25,7 +25,8 @@ of Hybrid A* (Dolgov et al. 2008). Its house:
 * **Tight corners** (:mod:`~segplan.planning.lattice.escape`): when the lattice runs out of
   states (or the goal looks enclosed), the planner asks for the tight arcs of short unions out
   of the start and into the goal, which turn closer to ``R`` than any primitive, and searches
-  again between their ends; a plan far above the Dubins length tries the direct union
+  again between their ends, each pair first probed with :data:`PROBE_EXPANSIONS` (the pairs
+  cut short are then searched in full); a plan far above the Dubins length tries the direct union
   between such arcs' ends. Where no pair of arcs joins, a forward robot's last tries start
   or end with a hop (a single union to a pose off the lattice's headings and offsets,
   :func:`~segplan.planning.lattice.escape.hop_pairs`), each probed with :data:`HOP_PROBE`.
@@ -451,9 +452,10 @@ def _reverse_costs(options: dict, scenario) -> tuple[float, float]:
     return options["reverse_factor"], options["cusp_penalty"] * scenario.robot.L
 
 
-#: The expansions of a probing search between a reversing robot's escape pairs
-#: (:func:`_escape`). Set by hand from dead-end-010 (its one-cusp escapes took 37-160
-#: expansions, its three-cusp ones 400-1900; ``segplan.studies.reverse_floors``), not tuned.
+#: The expansions of a probing search between escape pairs (:func:`_escape`). Set by hand
+#: from dead-end-010 (its one-cusp escapes took 37-160 expansions, its three-cusp ones
+#: 400-1900; ``segplan.studies.reverse_floors``), not tuned; a forward robot's pairs are
+#: probed with it too since issue 25's warehouse-020 (its joining pair took 8).
 PROBE_EXPANSIONS = 256
 #: A forward robot's hop pairs (:func:`segplan.planning.lattice.escape.hop_pairs`) searched
 #: between at most, each for at most :data:`HOP_PROBE` expansions, after its arcs' pairs failed
@@ -512,8 +514,10 @@ def _escape(
     find it (an anytime doubling, counted in expansions so that the answer is the same on
     any machine; k-turn-008's turn-around joins at once, after which its hops would have
     taken 0.3 s each), while a pair's estimate is below the best plan's search cost, and the
-    cheapest plan (search cost) is returned. A forward robot's escapes return
-    the first plan, as before; if no pair of its arcs joins (and no limit cut the tries
+    cheapest plan (search cost) is returned. A forward robot's pairs are probed in the same
+    way (warehouse-020 of :mod:`segplan.studies.floor_kinds`: the search towards its first
+    pair's arc ran to the 10 s time limit, while the fourth pair's joined in 8 expansions),
+    and its escapes return the first plan; if no pair of its arcs joins (and no limit cut the tries
     short), the first :data:`HOP_ESCAPES` of its hop pairs
     (:func:`segplan.planning.lattice.escape.hop_pairs`) are tried, each for at most
     :data:`HOP_PROBE` expansions, and the first plan is returned (only calls that failed
@@ -530,7 +534,10 @@ def _escape(
     until = math.inf  # after the first plan: as many expansions again as it took (below)
     pending = pairs
     hopped = []  # a forward robot's hop pairs, once its arcs' pairs failed
-    for cap in (PROBE_EXPANSIONS, None) if scenario.robot.reverse else (None, HOP_PROBE):
+    forward = not scenario.robot.reverse
+    # the arcs' pairs probed, those a probe cut short searched in full, then a forward robot's hops
+    caps = (PROBE_EXPANSIONS, None, HOP_PROBE) if forward else (PROBE_EXPANSIONS, None)
+    for stage, cap in enumerate(caps):
         again = []  # the pairs a probe cut short
         for est, a, b in pending:
             if best is not None and not est < best.search_cost:
@@ -541,7 +548,7 @@ def _escape(
             if used >= max_expansions or left <= 0:
                 cut = "expansions" if used >= max_expansions else "time"
                 break
-            tries += 1
+            tries += int(stage != 1)  # a pair searched in full after its probe is one try
             budget = max_expansions - used if cap is None else min(cap, max_expansions - used)
             try:
                 inner = _search_between(scenario, links, a, b, options, budget, left, schedule, progress)
@@ -560,9 +567,14 @@ def _escape(
                 until = used + (used - exc.expanded)
             if best is None or plan.search_cost < best.search_cost:
                 best = plan
-        if best is not None or cut is not None:
+        if best is not None or stage == len(caps) - 1:
             break
-        if scenario.robot.reverse:
+        # a limit of the call ends the tries; so does a search whose goal looked enclosed,
+        # except after a forward robot's probes (its pairs cut short are searched in full)
+        enclosed = cut == "expansions" and used < max_expansions
+        if cut is not None and not (forward and stage == 0 and enclosed):
+            break
+        if stage == 0:
             pending = again
         else:
             pending = hopped = hop_pairs(scenario, links)[:HOP_ESCAPES]
