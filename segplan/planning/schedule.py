@@ -55,7 +55,16 @@ class Schedule:
     enclosure_limit : int
         States (at ``L / 8``; times 4 per halving of the resolution and ``(R / L)^2`` for a
         robot turning wider than ``L``, 621d5a3) up to which the enclosure test counts: more,
-        and the goal does not look enclosed. Set by hand in 755f729; not measured.
+        and the goal does not look enclosed. Set by hand in 755f729. 3000 tried (issue 25,
+        2026-12-06, not adopted): of the 500 30 x 20 m floors of
+        :mod:`segplan.studies.floor_kinds` with the planner's own limits, three warehouses
+        whose goal faces the closed end of an aisle (027, 036, 083; 627-2306 states reach
+        their goals, OMPL's BIT* solves none) failed in 0.4-0.7 s instead of at the 10 s
+        time limit, no plan changed; but the robots probe's robot-58 (``benchmarks/robots.py``),
+        which plans after 85 078 expansions in 29 s, looked enclosed (1084 states) and failed
+        (``benchmarks/same_plans.py``). Each state counted costs a union from the start when
+        the goal looks enclosed (:meth:`segplan.planning.lattice.approach.GoalApproach.start_joins`:
+        about 0.35 ms each, 4 s for the 11 236 of warehouse-092).
     approach_growth : int
         States the approach tree grows to at :attr:`enclosure_after` (at ``L / 8``; scaled
         as :attr:`enclosure_limit`). Measured (621d5a3, was 300): on the 400 random floors
