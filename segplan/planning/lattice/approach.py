@@ -184,13 +184,15 @@ class GoalApproach:
         self.next = {(0, 0, 0): None}  # key -> (next key, h0, m) of the primitive to it
         self.grow(limit)
 
-    def _into(self, i: int, j: int, h: int):
-        """The primitives into the state ``(i, j, h)`` of the goal's lattice (those of
-        ``into[h]``): their start points in the lattice frame and the grid's screen of their
-        points (certainly free, certainly failing)."""
-        base = self._point((i, j) - self.steps_in[h][:, :2])
-        free, bad = self.grid.screen(self.pts_in[h] + base[:, None, :], self.dl_in[h])
-        return base, free, bad
+    def _into(self, ij, h: int):
+        """The primitives into the states ``ij`` (``(2,)`` or ``(n, 2)`` integers) of heading
+        ``h`` of the goal's lattice (those of ``into[h]``): the positions they start from
+        (``(..., primitives, 2)``, the goal's lattice) and the grid's screen of their points
+        (certainly free, certainly failing; ``(..., primitives)``)."""
+        starts = np.asarray(ij)[..., None, :] - self.steps_in[h][:, :2]
+        base = self._point(starts)
+        free, bad = self.grid.screen(self.pts_in[h] + base[..., None, :], self.dl_in[h])
+        return starts, free, bad
 
     def _point(self, ij) -> np.ndarray:
         """Start-lattice-frame position of the goal's-lattice point(s) ``ij`` (``(..., 2)`` integers)."""
@@ -262,7 +264,7 @@ class GoalApproach:
             i, j, h = key
             if not into[h]:
                 continue
-            _, free, bad = self._into(i, j, h)
+            _, free, bad = self._into((i, j), h)
             for k, (h0, m) in enumerate(into[h]):
                 p = self.prims[h0][m]
                 prev = (i - p.di, j - p.dj, h0)
@@ -379,9 +381,7 @@ class GoalApproach:
             for h, ij in by_heading.items():
                 back = self.steps_in[h]
                 for c in range(0, len(ij), _FLOOD_CHUNK):  # bounded memory on a large front
-                    starts = np.asarray(ij[c : c + _FLOOD_CHUNK])[:, None, :] - back[None, :, :2]
-                    pts = self.pts_in[h][None] + self._point(starts)[:, :, None, :]
-                    _, bad = self.grid.screen(pts, self.dl_in[h][None])
+                    starts, _, bad = self._into(ij[c : c + _FLOOD_CHUNK], h)
                     s, k = np.nonzero(~bad)  # (state of the front, primitive into it) pairs
                     pi, pj = starts[s, k, 0].tolist(), starts[s, k, 1].tolist()
                     for prev in zip(pi, pj, back[k, 2].tolist(), strict=True):

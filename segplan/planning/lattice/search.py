@@ -561,7 +561,7 @@ def _escape(
                 continue
             used += inner.expanded
             plan = join_arcs(scenario, a, inner, b, used, t0)
-            if not scenario.robot.reverse:
+            if forward:
                 return plan
             if best is None:
                 until = used + (used - exc.expanded)
