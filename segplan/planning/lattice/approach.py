@@ -31,7 +31,7 @@ import numpy as np
 
 from ...model.pose import Pose, wrap_floor
 from ...model.union import Union, cubic_coefficients, curvature_samples, peak_curvature
-from ..dubins import dubins_length
+from ..dubins import dubins_length, dubins_length_scalar
 from ..schedule import Schedule
 from .clearance import union_free_near, union_free_screened
 from .edges import LazyEdges
@@ -44,6 +44,13 @@ _FRAMES = (np.arange(1, 8) / 8.0)[None, :, None]
 _TAU = np.linspace(0.0, 1.0, 17)[None, None, :]
 #: States of a front whose primitives :meth:`GoalApproach.reach_all` screens at once.
 _FLOOD_CHUNK = 256
+#: Approach states up to which :meth:`GoalApproach.connect` takes their Dubins lengths one by one
+#: (:func:`segplan.planning.dubins.dubins_length_scalar`) rather than in one vectorised call.
+#: Measured on 2026-12-06 (this project's 2-core machine, random poses): the vectorised call
+#: costs 185-205 us for 1 to 32 poses (numpy's per-call overhead), the scalar one 4.7 us a
+#: pose (177 us for 32, 358 us for 64); enclosed goals have 0-3 approach states and call
+#: ``connect`` from every state expanded near them.
+_SCALAR_DUBINS = 32
 
 
 def steerable(p0, p1: np.ndarray, max_curvature: float, slack: float) -> np.ndarray:
@@ -293,6 +300,7 @@ class GoalApproach:
             if len(out)
             else np.zeros((0, 3))
         )
+        self.in_lattice_rows = self.in_lattice.tolist() if len(out) <= _SCALAR_DUBINS else None
 
     def start_joins(self, poses: np.ndarray) -> bool:
         """Does a free union within the steering limit join the start to one of ``poses``?
@@ -336,7 +344,12 @@ class GoalApproach:
             return None
         s = self.schedule
         a = self.in_lattice
-        est = g + self.costs + dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
+        if len(a) <= _SCALAR_DUBINS:
+            rows, R = self.in_lattice_rows, self.R
+            dub = np.array([dubins_length_scalar(x, y, th, ax, ay, at, R) for ax, ay, at in rows])
+        else:
+            dub = dubins_length(x, y, th, a[:, 0], a[:, 1], a[:, 2], self.R)
+        est = g + self.costs + dub
         order = np.argsort(est, kind="stable")[: s.approach_candidates]
         order = order[est[order] < goal_g]
         # the most promising states by Dubins length are often those no single union reaches
