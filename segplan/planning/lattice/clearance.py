@@ -137,9 +137,14 @@ class ClearanceGrid:
             i1, j1 = min(int(b[0]), self.nx), min(int(b[1]), self.ny)
             if i0 >= i1 or j0 >= j1:
                 continue
-            px = cx[i0:i1, None, None]
-            py = cy[None, j0:j1, None]
-            sd = np.max(px * poly.normals[:, 0] + py * poly.normals[:, 1] - poly.offsets, axis=-1)
+            # the signed distance of each centre to the edge lines moved out (the largest over
+            # the edges), one edge at a time: the same sums as over an (i, j, edge) array, at
+            # a fraction of its cost (no three-dimensional temporaries, no short-axis maximum)
+            px, py = cx[i0:i1, None], cy[None, j0:j1]
+            sd = None
+            for (ux, uy), off in zip(poly.normals.tolist(), poly.offsets.tolist(), strict=True):
+                e = px * ux + py * uy - off
+                sd = e if sd is None else np.maximum(sd, e, out=sd)
             occ[i0:i1, j0:j1] |= sd <= h
             blocked[i0:i1, j0:j1] |= sd < -h - depth
         if occ.any():
