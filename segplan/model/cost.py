@@ -141,13 +141,7 @@ def longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, full_output=False
         Romberg's error estimate, only with ``full_output=True``.
     """
     d, phi0, phi1, alpha, L = np.broadcast_arrays(d, phi0, phi1, alpha, L)
-    if each:  # each union's coefficients as its own call computes them: of scalars (X**2 is
-        # then pow's, in an array a product, which may differ in the last bit)
-        unions = zip(d.ravel(), phi0.ravel(), phi1.ravel(), alpha.ravel(), strict=True)
-        rows = np.array([cubic_coefficients(*u) for u in unions], dtype=float).reshape(-1, 4)
-        coef = tuple(rows[:, k].reshape(d.shape) for k in range(4))
-    else:
-        coef = cubic_coefficients(d, phi0, phi1, alpha)
+    coef = cubic_coefficients(d, phi0, phi1, alpha, each=each)  # with each: as its own call computes them
     integrand = _front_speed(*coef, L, each)  # coefficients once
     value, error = romberg(integrand, 0.0, 1.0, rtol=rtol, each=each)
     if full_output:

@@ -32,6 +32,7 @@ __all__ = [
     "curvature_polynomials",
     "curvature_samples",
     "exceeds_curvature",
+    "max_curvatures",
     "peak_curvature",
 ]
 
@@ -42,12 +43,27 @@ def chord_slopes(phi0, phi1, alpha):
     Vectorised over all arguments. ``m_i = tan(phi_i + alpha)`` is the slope of the
     heading in the alpha frame; the caller keeps ``alpha`` inside the feasible interval.
     """
+    return _slopes(phi0, phi1, alpha)[1:]
+
+
+def _slopes(phi0, phi1, alpha):
+    """``tan(alpha)`` and :func:`chord_slopes` (``tan(alpha)`` computed once)."""
     t = np.tan(alpha)
-    return np.tan(np.add(phi0, alpha)) - t, np.tan(np.add(phi1, alpha)) - t
+    return t, np.tan(np.add(phi0, alpha)) - t, np.tan(np.add(phi1, alpha)) - t
 
 
-def cubic_coefficients(d, phi0, phi1, alpha):
+def cubic_coefficients(d, phi0, phi1, alpha, each: bool = False):
     """Span and coefficients of the union's cubic in the alpha frame (vectorised).
+
+    Parameters
+    ----------
+    d, phi0, phi1, alpha : float or array_like
+        Chord length, intrinsic headings and the frame's alpha (they broadcast).
+    each : bool
+        Square each span as a call for that union alone does (``X**2`` of a scalar is the C
+        library's ``pow``, of an array a product, and the two may differ in the last bit):
+        every value that of a call for each union alone, to the last bit (numpy's ``cos``
+        and ``tan`` give an array's elements a scalar's values: measured).
 
     Returns
     -------
@@ -55,10 +71,13 @@ def cubic_coefficients(d, phi0, phi1, alpha):
         ``f(x) = c1 x + c2 x^2 + c3 x^3`` on ``[0, X]``, ``X = d cos(alpha)``.
     """
     X = np.multiply(d, np.cos(alpha))
-    m0, m1 = chord_slopes(phi0, phi1, alpha)
-    c1 = np.tan(alpha) + m0  # f'(0) = tan(phi0 + alpha)
+    t, m0, m1 = _slopes(phi0, phi1, alpha)
+    c1 = t + m0  # f'(0) = tan(phi0 + alpha)
     c2 = -(2.0 * m0 + m1) / X  # from f(X) = X tan(alpha), f'(X) = tan(phi1 + alpha)
-    c3 = (m0 + m1) / X**2
+    if each and np.ndim(X) > 0:
+        c3 = (m0 + m1) / np.array([x**2 for x in np.ravel(X)]).reshape(np.shape(X))  # each scalar's pow
+    else:
+        c3 = (m0 + m1) / X**2
     return X, c1, c2, c3
 
 
@@ -117,18 +136,77 @@ def _quartic(c1: float, c2: float, c3: float) -> np.ndarray:
 def _roots(c: np.ndarray) -> np.ndarray:
     """Roots of the polynomial of trimmed coefficients ``c`` (lowest first), as
     ``numpy.polynomial.polynomial.polyroots`` finds them: the eigenvalues of its companion
-    matrix, sorted."""
-    if len(c) < 2:
-        return np.array([], dtype=c.dtype)
-    if len(c) == 2:
-        return np.array([-c[0] / c[1]])
-    n = len(c) - 1
-    mat = np.zeros((n, n), dtype=c.dtype)
-    mat.reshape(-1)[n :: n + 1] = 1
-    mat[:, -1] -= c[:-1] / c[-1]
+    matrix, sorted. Rows ``c`` ``(m, k)`` of polynomials of one degree give rows of roots,
+    each that of a call for it alone (LAPACK's ``geev`` on each matrix; complex where any
+    row's roots are, real where all are)."""
+    k = c.shape[-1]
+    if k < 2:
+        return np.zeros((*c.shape[:-1], 0), dtype=c.dtype)
+    if k == 2:
+        return -c[..., :1] / c[..., 1:]
+    n = k - 1
+    mat = np.zeros((*c.shape[:-1], n, n), dtype=c.dtype)
+    mat.reshape(-1, n * n)[:, n :: n + 1] = 1
+    mat[..., -1] -= c[..., :-1] / c[..., -1:]
     r = np.linalg.eigvals(mat)
-    r.sort()
+    r.sort(axis=-1)
     return r
+
+
+def _stationary(c1, c2, c3, x_end) -> list[list[float]]:
+    """:meth:`Union.curvature_stationary` of each cubic ``(c1[k], c2[k], c3[k])`` on
+    ``[0, x_end[k]]`` (sequences of float): the roots of the quartics of one degree in one
+    call of :func:`_roots`."""
+    crits = [_quartic(a, b, c) for a, b, c in zip(c1, c2, c3, strict=True)]
+    out: list[list[float]] = [[] for _ in crits]
+    by_degree: dict[int, list[int]] = {}
+    for k, crit in enumerate(crits):
+        if crit.any():  # N does not vanish identically
+            by_degree.setdefault(len(crit), []).append(k)
+    for group in by_degree.values():
+        roots = _roots(np.array([crits[k] for k in group]))
+        inside = (
+            (np.abs(roots.imag) < 1e-9)
+            & (0.0 < roots.real)
+            & (roots.real < np.array([x_end[k] for k in group])[:, None])
+        )
+        for k, r, real in zip(group, roots.real, inside, strict=True):
+            out[k] = r[real].tolist()
+    return out
+
+
+def max_curvatures(x_end, c1, c2, c3) -> np.ndarray:
+    """:meth:`Union.max_curvature` of many unions, each value that of the method to the last bit.
+
+    Each union's stationary points are those of :meth:`Union.curvature_stationary`; the
+    curvature at them and at the ends is evaluated for all the unions at once, elementwise
+    (:meth:`Union.curvature`'s arithmetic; each row padded with its start, which leaves its
+    maximum as it is).
+
+    Parameters
+    ----------
+    x_end, c1, c2, c3 : sequence of float
+        Each union's span and cubic coefficients (:func:`cubic_coefficients`).
+
+    Returns
+    -------
+    ndarray
+        The largest ``|curvature|`` of each union's rear path.
+    """
+    cols = [np.asarray(v, dtype=float).ravel() for v in (x_end, c1, c2, c3)]
+    X, *coefficients = (v.tolist() for v in cols)
+    rows = [[0.0, x, *roots] for x, roots in zip(X, _stationary(*coefficients, X), strict=True)]
+    width = max(map(len, rows), default=2)
+    x = np.array([row + [0.0] * (width - len(row)) for row in rows]).reshape(-1, width)
+    return np.max(np.abs(_curvature(x, *(v[:, None] for v in cols[1:]))), axis=1)
+
+
+def _curvature(x, c1, c2, c3):
+    """Signed curvature ``f'' / (1 + f'^2)^(3/2)`` of the cubic ``(c1, c2, c3)`` at ``x``
+    (:meth:`Union.curvature`; coefficients and abscissae broadcast)."""
+    fpp = 6.0 * c3 * x + 2.0 * c2  # f''(x)
+    fp = (3.0 * c3 * x + 2.0 * c2) * x + c1  # f'(x)
+    return fpp / (1.0 + fp**2) ** 1.5
 
 
 def curvature_samples(X, c1, c2, c3, s):
@@ -385,16 +463,17 @@ class Union:
 
     def curvature(self, x):
         """Signed curvature of the rear path, ``f'' / (1 + f'^2)^(3/2)`` (1/length)."""
-        return self.second_derivative(x) / (1.0 + self.slope(x) ** 2) ** 1.5
+        _, c1, c2, c3 = self.coefficients
+        return _curvature(np.asarray(x, dtype=float), c1, c2, c3)
 
     def max_curvature(self) -> float:
         """Largest ``|curvature|`` of the rear path over the union, found exactly.
 
         Interior extrema solve ``f''' (1 + f'^2) - 3 f' f''^2 = 0``, a quartic in x
-        (:meth:`curvature_stationary`).
+        (:meth:`curvature_stationary`); :func:`max_curvatures` of many unions at once.
         """
-        xs = [0.0, self.x_end, *self.curvature_stationary()]
-        return float(np.max(np.abs(self.curvature(np.array(xs)))))
+        _, c1, c2, c3 = self.coefficients
+        return float(max_curvatures([self.x_end], [c1], [c2], [c3])[0])
 
     def curvature_stationary(self) -> list[float]:
         """Frame abscissae in ``(0, x_end)`` where the rear path's curvature is stationary.
@@ -405,11 +484,7 @@ class Union:
         curvature's extrema over any sub-interval lie at its ends or at these points.
         """
         _, c1, c2, c3 = self.coefficients
-        crit = _quartic(c1, c2, c3)
-        if not np.any(crit != 0):
-            return []
-        roots = _roots(crit)
-        return [r.real for r in roots if abs(r.imag) < 1e-9 and 0.0 < r.real < self.x_end]
+        return _stationary([c1], [c2], [c3], [self.x_end])[0]
 
     # -- world coordinates ---------------------------------------------------------
     def xs(self, n: int = 101) -> np.ndarray:

@@ -60,7 +60,7 @@ import numpy as np
 from ...model.cost import longd_exact_intrinsic, longd_gauss_intrinsic
 from ...model.frame import heuristic_alpha
 from ...model.pose import alpha_interval, wrap
-from ...model.union import Union, cubic_coefficients, curvature_samples, peak_curvature
+from ...model.union import Union, cubic_coefficients, curvature_samples, max_curvatures, peak_curvature
 from .frame import HEADING_VECTORS, NH, LatticeFrame, heading_angles
 
 __all__ = [
@@ -312,9 +312,11 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     less memory traffic).
 
     With ``kmax``: ``inf`` for the unions whose curvature at one of their ends (the first and
-    last of the 49 samples, the same values to the last bit) already exceeds ``kmax``, their
-    other samples not computed; ``peak <= kmax`` is then decided as without ``kmax``, and the
-    least of several peaks is the same wherever it is at most ``kmax``.
+    last of the 49 samples, the same values to the last bit: the start's first, the end's of
+    the unions it leaves) already exceeds ``kmax``, their other samples not computed;
+    ``peak <= kmax`` is then decided as without ``kmax`` (the samples are finite: alphas
+    inside their intervals), and the least of several peaks is the same wherever it is at
+    most ``kmax``.
     """
     d, phi0, phi1, alpha = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha))
@@ -328,11 +330,13 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
             np.asarray(v, dtype=float) for v in cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
         )
         block = out[sl]
-        if kmax is not None:
-            _, fp, fpp = curvature_samples(X, c1, c2, c3, _ENDS_S)  # the ends, one row each
-            over = peak_curvature(fp, fpp, axis=0) > kmax
-            block[over] = math.inf
-            rest = ~over
+        if kmax is not None:  # the start (one row), then the end of the unions it leaves
+            _, fp, fpp = curvature_samples(X, c1, c2, c3, _ENDS_S[:1])
+            start = peak_curvature(fp, fpp, axis=0)
+            rest = np.flatnonzero(~(start > kmax))
+            _, fp, fpp = curvature_samples(X[rest], c1[rest], c2[rest], c3[rest], _ENDS_S[1:])
+            rest = rest[~(np.maximum(start[rest], peak_curvature(fp, fpp, axis=0)) > kmax)]
+            block[:] = math.inf
             X, c1, c2, c3 = X[rest], c1[rest], c2[rest], c3[rest]
         else:
             rest = slice(None)
@@ -377,6 +381,11 @@ def _geometry(unions: list[Union]) -> tuple[np.ndarray, ...]:
     for u in unions:
         fa = u.frame_angle
         rows.append((u.p0.x, u.p0.y, fa, math.cos(fa), math.sin(fa), u.x_end, *u.coefficients[1:]))
+    return _columns(rows)
+
+
+def _columns(rows: list[tuple]) -> tuple[np.ndarray, ...]:
+    """The columns ``(m, 1)`` of :func:`_geometry` from its rows, one union's values each."""
     return tuple(np.array(col)[:, None] for col in zip(*rows, strict=True))
 
 
@@ -425,24 +434,50 @@ def _exact(rows: list[tuple], L: float) -> list[float]:
     return np.atleast_1d(longd_exact_intrinsic(d, phi0, phi1, alpha, L, rtol=1e-10, each=True)).tolist()
 
 
-def _make(h0, h1, i, j, r, L, alpha, d, phi0, phi1, cost) -> tuple[Primitive, Union]:
-    """A primitive of LONGD ``cost`` (:func:`_exact`), its covering radius still NaN
-    (:func:`_covered` sets it), and its union."""
-    th0 = _ANGLES[h0]
-    u = Union((0.0, 0.0, th0), (i * r, j * r, _ANGLES[h1]), alpha, L)
-    pts = _points(_geometry([u]), L, SAMPLE_S, SAMPLE_T)[0]
-    p = Primitive(
-        h0, h1, i, j, cost, float(alpha), float(d), float(phi0), float(phi1), u.max_curvature(), pts, math.nan
+def _make(rows: list[tuple], r: float, L: float) -> list[tuple[Primitive, tuple]]:
+    """Primitives of candidates ``(h0, h1, i, j, alpha, d, phi0, phi1, cost)`` (``cost``: their
+    LONGD [1], :func:`_exact`), their covering radii still NaN (:func:`_covered` sets them),
+    each with its union's row of :func:`_geometry`.
+
+    One vectorised pass, each value that of the union ``Union((0, 0, theta0), (i r, j r,
+    theta1), alpha, L)`` made alone, to the last bit: its intrinsic parameters from the end
+    poses (numpy's ``hypot`` and ``arctan2``, :func:`segplan.model.pose.wrap`), its cubic
+    (:func:`segplan.model.union.cubic_coefficients` with ``each``), its exact peak curvature
+    (:func:`segplan.model.union.max_curvatures`) and points (:func:`_points`). The candidates'
+    alphas lie inside their feasible intervals by ``1e-9`` (:func:`_best_alphas`), so the
+    union's checks hold.
+    """
+    h0, h1, i, j, alpha = (np.array(col) for col in list(zip(*rows, strict=True))[:5])
+    x1, y1 = i * r, j * r  # the end point (the start is the origin)
+    d = np.hypot(x1, y1)
+    psi = np.arctan2(y1, x1)
+    X, c1, c2, c3 = cubic_coefficients(d, wrap(_ANGLES[h0] - psi), wrap(_ANGLES[h1] - psi), alpha, each=True)
+    fa = (psi - alpha).tolist()  # the frame angle
+    geometry = list(
+        zip(
+            *([0.0] * len(rows),) * 2,
+            fa,
+            map(math.cos, fa),
+            map(math.sin, fa),
+            *(v.tolist() for v in (X, c1, c2, c3)),
+            strict=True,
+        )
     )
-    return p, u
+    pts = _points(_columns(geometry), L, SAMPLE_S, SAMPLE_T)
+    peaks = max_curvatures(X, c1, c2, c3).tolist()
+    out = []
+    for row, g, points, peak in zip(rows, geometry, pts, peaks, strict=True):
+        h0_, h1_, i_, j_, a, dd, p0, p1, cost = row
+        out.append((Primitive(h0_, h1_, i_, j_, cost, a, dd, p0, p1, peak, points, math.nan), g))
+    return out
 
 
-def _covered(made: list[tuple[Primitive, Union]], L: float) -> list[Primitive]:
-    """The primitives of :func:`_make` with their covering radii (one vectorised pass)."""
-    if not made:
-        return []
-    deltas = _covering(_geometry([u for _, u in made]), L, SAMPLE_S, SAMPLE_T)
-    return [replace(p, delta=float(dl)) for (p, _), dl in zip(made, deltas, strict=True)]
+def _covered(base: list[list[tuple[Primitive, tuple]]], L: float) -> list[list[Primitive]]:
+    """The primitives of :func:`_make` (lists of them) with their covering radii (one
+    vectorised pass, each union's radius that of a pass for it alone)."""
+    made = [m for b in base for m in b]
+    deltas = iter(_covering(_columns([g for _, g in made]), L, SAMPLE_S, SAMPLE_T).tolist())
+    return [[replace(p, delta=next(deltas)) for p, _ in b] for b in base]
 
 
 def _rank(estimate: float, key: tuple[int, int, int, int], L: float) -> tuple:
@@ -462,16 +497,26 @@ def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
 
 
 def _reaches(
-    kept: list, h0: int, target: tuple, budget: float, depth: int = 3, margins: dict | None = None
+    kept: list, into: list, h0: int, target: tuple, budget: float, depth: int = 3, margins: dict | None = None
 ) -> bool:
     """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?
 
-    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``. With
-    ``margins`` (a dict), the smallest ``|cost - budget| / budget`` of the chains compared is
-    kept under the key ``"budget"`` (:func:`selection_margins`).
+    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``; ``into[h]``:
+    their costs by step ``(di, dj, h1)``. With ``margins`` (a dict), the smallest
+    ``|cost - budget| / budget`` of the chains compared is kept under the key ``"budget"``
+    (:func:`selection_margins`); without, the last step looks up the primitives that end on
+    the target instead of trying every one (the same answer: costs are positive, so a chain
+    over the budget is over it whatever follows).
     """
     frontier = [(0, 0, h0, 0.0)]
-    for _ in range(depth):
+    ti, tj, th = target
+    for level in range(depth):
+        if margins is None and level == depth - 1:
+            return any(
+                not c + cost > budget
+                for i, j, h, c in frontier
+                for cost in into[h].get((ti - i, tj - j, th), ())
+            )
         nxt = []
         for i, j, h, c in frontier:
             for di, dj, h1, cost in kept[h]:
@@ -627,11 +672,11 @@ def compute_primitive_set(
     kmax = math.tan(max_steer) / L
     R = 1.0 / kmax
     bound = max_reach(L, max_steer, r)
-    base: list[list[tuple[Primitive, Union]]] = [[] for _ in range(4)]
-    straight = [(0.0, math.hypot(*HEADING_VECTORS[h0]) * r, 0.0, 0.0) for h0 in range(4)]  # unit steps
-    for h0, cost in enumerate(_exact(straight, L)):
-        i, j = HEADING_VECTORS[h0]
-        base[h0].append(_make(h0, h0, i, j, r, L, *straight[h0], cost))
+    straight = [
+        (h0, h0, *HEADING_VECTORS[h0], 0.0, math.hypot(*HEADING_VECTORS[h0]) * r, 0.0, 0.0) for h0 in range(4)
+    ]
+    costs = _exact(straight, L)  # the unit steps
+    base = [[made] for made in _make([(*c, cost) for c, cost in zip(straight, costs, strict=True)], r, L)]
     cands = []
     for h0 in range(4):
         I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
@@ -647,42 +692,50 @@ def compute_primitive_set(
         _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
 
     kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
+    into: list[dict] = [{} for _ in range(NH)]  # the costs of kept[h] by their step (di, dj, h1)
 
     def keep(p: Primitive) -> None:
         for h0_, di, dj, h1_, c in _steps(p):
             kept[h0_].append((di, dj, h1_, c))
+            into[h0_].setdefault((di, dj, h1_), []).append(c)
 
     for b in base:
         for p, _ in b:
             keep(p)
     per: dict = {}
     full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
-    exact: dict[int, float] = {}  # LONGD [1] of the candidates made, and of some ahead of them
-    for n, (est, h0, h1, i, j, a, d, phi0, phi1) in enumerate(cands):
+    made: dict[int, tuple[Primitive, tuple]] = {}  # the candidates made, and some ahead of them
+    for n, (est, h0, h1, i, j, *_) in enumerate(cands):
         if full == 4 * len(TURNS):
             break
         key = (h0, (h1 - h0) % NH)
         if per.get(key, 0) >= PER_TURN:
             continue
-        if _reaches(kept, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
+        if _reaches(kept, into, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
             continue
-        if n not in exact:  # this one and the next _AHEAD - 1 of turns not yet full, in one batch
+        if n not in made:  # this one and the next _AHEAD - 1 of turns not yet full, in one batch
             ahead = [n]
             for m in range(n + 1, len(cands)):
                 if len(ahead) == _AHEAD:
                     break
                 c = cands[m]
-                if m not in exact and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN:
+                if m not in made and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN:
                     ahead.append(m)
-            exact.update(zip(ahead, _exact([cands[m] for m in ahead], L), strict=True))
-        p, u = _make(h0, h1, i, j, r, L, a, d, phi0, phi1, exact[n])
+            rows = [cands[m][1:] for m in ahead]
+            costs = _exact(rows, L)
+            made.update(
+                zip(
+                    ahead, _make([(*c, cost) for c, cost in zip(rows, costs, strict=True)], r, L), strict=True
+                )
+            )
+        p, g = made[n]
         if margins is not None:
             _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
             _note(margins, "reach", abs(np.abs(p.points).max() - bound) / bound)
         if p.peak_curvature > kmax or np.abs(p.points).max() > bound:
             continue
-        base[h0].append((p, u))
+        base[h0].append((p, g))
         per[key] = per.get(key, 0) + 1
         full += per[key] == PER_TURN
         keep(p)
-    return PrimitiveSet(L, float(max_steer), r, _all_headings([_covered(b, L) for b in base]))
+    return PrimitiveSet(L, float(max_steer), r, _all_headings(_covered(base, L)))
