@@ -61,6 +61,7 @@ from ...model.cost import longd_exact_intrinsic, longd_gauss_intrinsic
 from ...model.frame import heuristic_alpha
 from ...model.pose import alpha_interval, wrap
 from ...model.union import Union, cubic_coefficients, curvature_samples, max_curvatures, peak_curvature
+from .chains import Chains
 from .frame import HEADING_VECTORS, NH, LatticeFrame, heading_angles
 
 __all__ = [
@@ -500,26 +501,17 @@ def _steps(p: Primitive) -> list[tuple[int, int, int, int, float]]:
 
 
 def _reaches(
-    kept: list, into: list, h0: int, target: tuple, budget: float, depth: int = 3, margins: dict | None = None
+    kept: list, h0: int, target: tuple, budget: float, depth: int = 3, margins: dict | None = None
 ) -> bool:
     """Does a chain of at most ``depth`` kept primitives reach ``target`` for at most ``budget``?
 
-    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``; ``into[h]``:
-    their costs by step ``(di, dj, h1)``. With ``margins`` (a dict), the smallest
-    ``|cost - budget| / budget`` of the chains compared is kept under the key ``"budget"``
-    (:func:`selection_margins`); without, the last step looks up the primitives that end on
-    the target instead of trying every one (the same answer: costs are positive, so a chain
-    over the budget is over it whatever follows).
+    ``kept[h]``: ``(di, dj, h1, cost)`` of the kept primitives from heading ``h``. With
+    ``margins`` (a dict), the smallest ``|cost - budget| / budget`` of the chains compared is
+    kept under the key ``"budget"`` (:func:`selection_margins`); the selection asks
+    :meth:`~segplan.planning.lattice.chains.Chains.reaches` otherwise (the same answer).
     """
     frontier = [(0, 0, h0, 0.0)]
-    ti, tj, th = target
-    for level in range(depth):
-        if margins is None and level == depth - 1:
-            return any(
-                not c + cost > budget
-                for i, j, h, c in frontier
-                for cost in into[h].get((ti - i, tj - j, th), ())
-            )
+    for _ in range(depth):
         nxt = []
         for i, j, h, c in frontier:
             for di, dj, h1, cost in kept[h]:
@@ -694,35 +686,41 @@ def compute_primitive_set(
         ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
         _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
 
-    kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
-    into: list[dict] = [{} for _ in range(NH)]  # the costs of kept[h] by their step (di, dj, h1)
-
-    def keep(p: Primitive) -> None:
-        for h0_, di, dj, h1_, c in _steps(p):
-            kept[h0_].append((di, dj, h1_, c))
-            into[h0_].setdefault((di, dj, h1_), []).append(c)
-
+    chains = Chains()  # the kept primitives, every heading's
     for b in base:
         for p, _ in b:
-            keep(p)
+            for step in _steps(p):
+                chains.add(*step)
     per: dict = {}
     full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
     made: dict[int, tuple[Primitive, tuple]] = {}  # the candidates made, and some ahead of them
-    for n, (est, h0, h1, i, j, *_) in enumerate(cands):
+    reached: set[int] = set()  # candidates a chain already reaches (and always will: kept only grows)
+
+    def pruned(m: int, notes: dict | None = None) -> bool:
+        """Does a chain of kept primitives reach candidate ``m`` within its budget? With ``notes``
+        (the margins) every chain compared is noted (:func:`_reaches`); without, the answer is
+        looked up (:meth:`Chains.reaches`) and a yes remembered (primitives are only added)."""
+        est, h0, h1, i, j = cands[m][:5]
+        target, budget = (i, j, h1), est * (1.0 + PRUNE)
+        if notes is not None:
+            return _reaches(chains.kept, h0, target, budget, margins=notes)
+        if m not in reached and chains.reaches(h0, target, budget):
+            reached.add(m)
+        return m in reached
+
+    for n, (_, h0, h1, *_) in enumerate(cands):
         if full == 4 * len(TURNS):
             break
         key = (h0, (h1 - h0) % NH)
-        if per.get(key, 0) >= PER_TURN:
+        if per.get(key, 0) >= PER_TURN or pruned(n, margins):  # margins: every chain compared
             continue
-        if _reaches(kept, into, h0, (i, j, h1), est * (1.0 + PRUNE), margins=margins):
-            continue
-        if n not in made:  # this one and the next _AHEAD - 1 of turns not yet full, in one batch
+        if n not in made:  # this one and the next _AHEAD - 1 that may be kept, in one batch
             ahead = [n]
             for m in range(n + 1, len(cands)):
                 if len(ahead) == _AHEAD:
                     break
                 c = cands[m]
-                if m not in made and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN:
+                if m not in made and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN and not pruned(m):
                     ahead.append(m)
             rows = [cands[m][1:] for m in ahead]
             costs = _exact(rows, L)
@@ -740,5 +738,6 @@ def compute_primitive_set(
         base[h0].append((p, g))
         per[key] = per.get(key, 0) + 1
         full += per[key] == PER_TURN
-        keep(p)
+        for step in _steps(p):
+            chains.add(*step)
     return PrimitiveSet(L, float(max_steer), r, _all_headings(_covered(base, L)))
