@@ -316,8 +316,9 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     less memory traffic).
 
     With ``kmax``: ``inf`` for the unions whose curvature at one of their ends (the first and
-    last of the 49 samples, the same values to the last bit: the start's first, the end's of
-    the unions it leaves) already exceeds ``kmax``, their other samples not computed;
+    last of the 49 samples, the same values to the last bit: the start's first, where
+    :func:`~segplan.model.union.curvature_samples`' terms in ``x`` vanish, the end's of the
+    unions it leaves) already exceeds ``kmax``, their other samples not computed;
     ``peak <= kmax`` is then decided as without ``kmax`` (the samples are finite: alphas
     inside their intervals), and the least of several peaks is the same wherever it is at
     most ``kmax``.
@@ -334,9 +335,8 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
             np.asarray(v, dtype=float) for v in cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
         )
         block = out[sl]
-        if kmax is not None:  # the start (one row), then the end of the unions it leaves
-            _, fp, fpp = curvature_samples(X, c1, c2, c3, _ENDS_S[:1])
-            start = peak_curvature(fp, fpp, axis=0)
+        if kmax is not None:  # the start, then the end of the unions it leaves (one row each)
+            start = peak_curvature(c1[None], 2.0 * c2[None], axis=0)  # x = 0: f' = c1, f'' = 2 c2
             rest = np.flatnonzero(~(start > kmax))
             _, fp, fpp = curvature_samples(X[rest], c1[rest], c2[rest], c3[rest], _ENDS_S[1:])
             rest = rest[~(np.maximum(start[rest], peak_curvature(fp, fpp, axis=0)) > kmax)]
@@ -349,14 +349,26 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     return out.reshape(shape)
 
 
-def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) -> np.ndarray:
+def _best_alphas(parts: list[tuple], L, kmax, margins: dict | None = None) -> list[np.ndarray]:
     """Per union: the optimal frame's alpha if its cubic keeps the steering limit (sampled),
     else the alpha of least sampled peak curvature among ``_STEER_ALPHAS`` if that keeps it,
-    else NaN (vectorised). ``margins``: see :func:`selection_margins` (every peak is then
-    computed; without, the unions whose ends already break the limit are not sampled further:
-    :func:`_peaks`)."""
+    else NaN; ``parts``: each start heading's candidates (:func:`_candidates`), one array of
+    alphas each. ``margins``: see :func:`selection_margins` (every peak is then computed;
+    without, the unions whose ends already break the limit are not sampled further:
+    :func:`_peaks`).
+
+    The optimal frames one heading at a time (:func:`segplan.model.frame.heuristic_alpha`'s
+    product with its fit's coefficients rounds by a row's place in the array), the peaks of
+    all the headings' unions at once (elementwise: the same values).
+    """
     screen = kmax if margins is None else None
-    a = np.clip(np.asarray(heuristic_alpha(d, phi0, phi1, L), dtype=float), lo + 1e-9, hi - 1e-9)
+    d, phi0, phi1, lo, hi = (np.concatenate([p[k] for p in parts]) for k in range(3, 8))
+    a = np.concatenate(
+        [
+            np.clip(np.asarray(heuristic_alpha(*p[3:6], L), dtype=float), p[6] + 1e-9, p[7] - 1e-9)
+            for p in parts
+        ]
+    )
     peak = _peaks(d, phi0, phi1, a, screen)
     bad = ~(peak <= kmax)
     checked = [peak]
@@ -374,7 +386,7 @@ def _best_alphas(d, phi0, phi1, lo, hi, L, kmax, margins: dict | None = None) ->
             _note(margins, "frame", np.min((two[:, 1] - two[:, 0]) / two[:, 0]))
     if margins is not None:
         _note(margins, "steer", np.min(np.abs(np.concatenate(checked) - kmax)) / kmax)
-    return a
+    return np.split(a, np.cumsum([len(p[3]) for p in parts])[:-1])
 
 
 def _geometry(unions: list[Union]) -> tuple[np.ndarray, ...]:
@@ -673,9 +685,11 @@ def compute_primitive_set(
     costs = _exact(straight, L)  # the unit steps
     base = [[made] for made in _make([(*c, cost) for c, cost in zip(straight, costs, strict=True)], r, L)]
     cands = []
-    for h0 in range(4):
-        I, J, H1, d, phi0, phi1, lo, hi = _candidates(h0, r, R)
-        a = _best_alphas(d, phi0, phi1, lo, hi, L, kmax * (1.0 - 1e-6), margins)
+    parts = [_candidates(h0, r, R) for h0 in range(4)]
+    for h0, part, a in zip(
+        range(4), parts, _best_alphas(parts, L, kmax * (1.0 - 1e-6), margins), strict=True
+    ):
+        I, J, H1, d, phi0, phi1, _, _ = part
         ok = np.isfinite(a)
         est = longd_gauss_intrinsic(d[ok], phi0[ok], phi1[ok], a[ok], L)
         cols = (est, I[ok], J[ok], H1[ok], a[ok], d[ok], phi0[ok], phi1[ok])
