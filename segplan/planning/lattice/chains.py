@@ -49,6 +49,9 @@ class Chains:
         self._into: list[list[tuple[int, int, int, float]]] = [
             [] for _ in range(NH)
         ]  # (h0, di, dj, cost) by h1
+        self._ending: list[list[list]] = [
+            [[] for _ in range(NH)] for _ in range(STARTS)
+        ]  # [h0][h1]: (di, dj, cost)
         self._one: list[dict] = [{} for _ in range(STARTS)]  # state -> least cost of one step from (0, 0, h0)
         self._two: list[dict] = [{} for _ in range(STARTS)]  # state -> least cost of two steps
 
@@ -56,14 +59,14 @@ class Chains:
         """Keep the primitive from ``(0, 0, h0)`` to ``(di, dj, h1)`` of LONGD ``cost`` (> 0)."""
         self.kept[h0].append((di, dj, h1, cost))
         self._into[h1].append((h0, di, dj, cost))
-        for s in range(STARTS):  # the new chains: this primitive first, or second
-            if s == h0:
-                _least(self._one[s], (di, dj, h1), cost)
-                for di2, dj2, h2, c2 in self.kept[h1]:
-                    _least(self._two[s], (di + di2, dj + dj2, h2), cost + c2)
-            for di1, dj1, g, c1 in self.kept[s]:
-                if g == h0:
-                    _least(self._two[s], (di1 + di, dj1 + dj, h1), c1 + cost)
+        if h0 < STARTS:  # the new chains that start with it
+            self._ending[h0][h1].append((di, dj, cost))
+            _least(self._one[h0], (di, dj, h1), cost)
+            for di2, dj2, h2, c2 in self.kept[h1]:
+                _least(self._two[h0], (di + di2, dj + dj2, h2), cost + c2)
+        for s in range(STARTS):  # those that end with it
+            for di1, dj1, c1 in self._ending[s][h0]:
+                _least(self._two[s], (di1 + di, dj1 + dj, h1), c1 + cost)
 
     def reaches(self, h0: int, target: tuple, budget: float) -> bool:
         """Does a chain of at most three kept primitives from ``(0, 0, h0)`` (``h0 < 4``) reach
