@@ -682,8 +682,6 @@ def compute_primitive_set(
     straight = [
         (h0, h0, *HEADING_VECTORS[h0], 0.0, math.hypot(*HEADING_VECTORS[h0]) * r, 0.0, 0.0) for h0 in range(4)
     ]
-    costs = _exact(straight, L)  # the unit steps
-    base = [[made] for made in _make([(*c, cost) for c, cost in zip(straight, costs, strict=True)], r, L)]
     cands = []
     parts = [_candidates(h0, r, R) for h0 in range(4)]
     for h0, part, a in zip(
@@ -700,6 +698,11 @@ def compute_primitive_set(
         ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
         _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
 
+    first = range(min(_AHEAD, len(cands)))  # made with the unit steps: the cheapest candidates
+    rows = straight + [cands[m][1:] for m in first]
+    batch = _make([(*c, cost) for c, cost in zip(rows, _exact(rows, L), strict=True)], r, L)
+    base = [[step] for step in batch[:4]]
+    made = dict(zip(first, batch[4:], strict=True))  # the candidates made (and others, ahead)
     chains = Chains()  # the kept primitives, every heading's
     for b in base:
         for p, _ in b:
@@ -707,7 +710,6 @@ def compute_primitive_set(
                 chains.add(*step)
     per: dict = {}
     full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
-    made: dict[int, tuple[Primitive, tuple]] = {}  # the candidates made, and some ahead of them
     reached: set[int] = set()  # candidates a chain already reaches (and always will: kept only grows)
 
     def pruned(m: int, notes: dict | None = None) -> bool:
