@@ -312,8 +312,8 @@ _PEAK_BLOCK = 4096
 
 def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     """Largest rear-path curvature sampled at 49 abscissae, vectorised over unions (arrays
-    that broadcast to one shape; in blocks of :data:`_PEAK_BLOCK` unions: the same values,
-    less memory traffic).
+    that broadcast to one shape; in blocks of rows of about :data:`_PEAK_BLOCK` unions: the
+    same values, less memory traffic).
 
     With ``kmax``: ``inf`` for the unions whose curvature at one of their ends (the first and
     last of the 49 samples, the same values to the last bit: the start's first, where
@@ -323,18 +323,15 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
     inside their intervals), and the least of several peaks is the same wherever it is at
     most ``kmax``.
     """
-    d, phi0, phi1, alpha = np.broadcast_arrays(
-        *(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha))
-    )
-    shape = d.shape
-    d, phi0, phi1, alpha = (v.ravel() for v in (d, phi0, phi1, alpha))
-    out = np.empty(d.size)
-    for k in range(0, d.size, _PEAK_BLOCK):
-        sl = slice(k, k + _PEAK_BLOCK)
+    args = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in (d, phi0, phi1, alpha)))
+    out = np.empty(args[0].shape)
+    rows = max(1, _PEAK_BLOCK // max(1, math.prod(out.shape[1:])))  # blocks of whole rows: views, not copies
+    for k in range(0, len(out), rows):
+        sl = slice(k, k + rows)
         X, c1, c2, c3 = (
-            np.asarray(v, dtype=float) for v in cubic_coefficients(d[sl], phi0[sl], phi1[sl], alpha[sl])
+            np.asarray(v, dtype=float).ravel() for v in cubic_coefficients(*(v[sl] for v in args))
         )
-        block = out[sl]
+        block = out[sl].reshape(-1)
         if kmax is not None:  # the start, then the end of the unions it leaves (one row each)
             start = peak_curvature(c1[None], 2.0 * c2[None], axis=0)  # x = 0: f' = c1, f'' = 2 c2
             rest = np.flatnonzero(~(start > kmax))
@@ -346,7 +343,7 @@ def _peaks(d, phi0, phi1, alpha, kmax: float | None = None) -> np.ndarray:
             rest = slice(None)
         _, fp, fpp = curvature_samples(X[:, None], c1[:, None], c2[:, None], c3[:, None], _PEAK_S)
         block[rest] = peak_curvature(fp, fpp)
-    return out.reshape(shape)
+    return out
 
 
 def _best_alphas(parts: list[tuple], L, kmax, margins: dict | None = None) -> list[np.ndarray]:
