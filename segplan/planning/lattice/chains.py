@@ -10,7 +10,7 @@ The selection tries the chains breadth first (one step, two, three) where it not
 close each cost it compares comes to the budget (``_reaches`` in that module, for
 :func:`~segplan.planning.lattice.primitives.selection_margins`). :meth:`Chains.reaches` looks
 the same answer up: :class:`Chains` indexes the kept primitives as they are added, with the
-least cost of the one- and two-step chains from each start heading to each state, and a
+least cost of the chains of at most two steps from each start heading to each state, and a
 query tries only the kept primitives into the target's heading as the last step. The two
 answer alike: costs are positive, so a chain over the budget stays over it whatever
 follows, and a rounded sum does not decrease when a term grows, so the cheapest prefix to a
@@ -46,14 +46,13 @@ class Chains:
 
     def __init__(self) -> None:
         self.kept: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
-        self._into: list[list[tuple[int, int, int, float]]] = [
-            [] for _ in range(NH)
-        ]  # (h0, di, dj, cost) by h1
-        self._ending: list[list[list]] = [
-            [[] for _ in range(NH)] for _ in range(STARTS)
-        ]  # [h0][h1]: (di, dj, cost)
-        self._one: list[dict] = [{} for _ in range(STARTS)]  # state -> least cost of one step from (0, 0, h0)
-        self._two: list[dict] = [{} for _ in range(STARTS)]  # state -> least cost of two steps
+        #: ``(h0, di, dj, cost)`` of the kept primitives by end heading.
+        self._into: list[list[tuple[int, int, int, float]]] = [[] for _ in range(NH)]
+        #: ``[h0][h1]``: ``(di, dj, cost)`` of the kept primitives from ``h0 < STARTS`` to ``h1``.
+        self._ending: list[list[list]] = [[[] for _ in range(NH)] for _ in range(STARTS)]
+        #: ``[h0]``: the least cost of the chains of at most two kept primitives from
+        #: ``(0, 0, h0)`` to each state (none: ``(0, 0, h0)`` itself, for 0.0).
+        self._prefix: list[dict] = [{(0, 0, h0): 0.0} for h0 in range(STARTS)]
 
     def add(self, h0: int, di: int, dj: int, h1: int, cost: float) -> None:
         """Keep the primitive from ``(0, 0, h0)`` to ``(di, dj, h1)`` of LONGD ``cost`` (> 0)."""
@@ -61,23 +60,21 @@ class Chains:
         self._into[h1].append((h0, di, dj, cost))
         if h0 < STARTS:  # the new chains that start with it
             self._ending[h0][h1].append((di, dj, cost))
-            _least(self._one[h0], (di, dj, h1), cost)
+            prefix = self._prefix[h0]
+            _least(prefix, (di, dj, h1), cost)
             for di2, dj2, h2, c2 in self.kept[h1]:
-                _least(self._two[h0], (di + di2, dj + dj2, h2), cost + c2)
+                _least(prefix, (di + di2, dj + dj2, h2), cost + c2)
         for s in range(STARTS):  # those that end with it
             for di1, dj1, c1 in self._ending[s][h0]:
-                _least(self._two[s], (di1 + di, dj1 + dj, h1), c1 + cost)
+                _least(self._prefix[s], (di1 + di, dj1 + dj, h1), c1 + cost)
 
     def reaches(self, h0: int, target: tuple, budget: float) -> bool:
         """Does a chain of at most three kept primitives from ``(0, 0, h0)`` (``h0 < 4``) reach
         ``target`` ``(i, j, h1)`` for at most ``budget``? (The breadth-first search's answer.)"""
         ti, tj, th = target
-        for h, di, dj, c in self._into[th]:  # the last step
-            state = (ti - di, tj - dj, h)
-            if state == (0, 0, h0) and not c > budget:
+        prefix = self._prefix[h0]
+        for h, di, dj, c in self._into[th]:  # the last step, after the cheapest prefix to its start
+            least = prefix.get((ti - di, tj - dj, h))
+            if least is not None and not least + c > budget:
                 return True
-            for table in (self._one[h0], self._two[h0]):
-                prefix = table.get(state)
-                if prefix is not None and not prefix + c > budget:
-                    return True
         return False

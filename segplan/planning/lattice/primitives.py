@@ -303,8 +303,9 @@ def _candidates(h0: int, r: float, R: float):
 
 
 #: Candidates whose LONGD [1] the selection computes and which it makes in one batch
-#: (:func:`_exact`, :func:`_make`): the one it makes and the next of turns not yet full, most
-#: of which it makes too (8, 16, 24, 32 and 48 measured: 24 about the fastest at L / 2 and L / 8).
+#: (:func:`_exact`, :func:`_make`): the one it makes and the next that it may keep (no chain
+#: reaching them yet, no more of a turn than it has room for), most of which it keeps (8, 16,
+#: 24, 32 and 48 measured: 24 about the fastest at L / 2 and L / 8).
 _AHEAD = 24
 #: Unions per block of :func:`_peaks` (its temporaries stay in the CPU's caches).
 _PEAK_BLOCK = 4096
@@ -728,13 +729,16 @@ def compute_primitive_set(
         if per.get(key, 0) >= PER_TURN or pruned(n, margins):  # margins: every chain compared
             continue
         if n not in made:  # this one and the next _AHEAD - 1 that may be kept, in one batch
-            ahead = [n]
+            ahead, room = [n], {key: PER_TURN - per.get(key, 0) - 1}  # no more of a turn than it has room for
             for m in range(n + 1, len(cands)):
                 if len(ahead) == _AHEAD:
                     break
                 c = cands[m]
-                if m not in made and per.get((c[1], (c[2] - c[1]) % NH), 0) < PER_TURN and not pruned(m):
+                turn = (c[1], (c[2] - c[1]) % NH)
+                left = room.get(turn, PER_TURN - per.get(turn, 0))
+                if left > 0 and m not in made and not pruned(m):
                     ahead.append(m)
+                    room[turn] = left - 1
             rows = [cands[m][1:] for m in ahead]
             costs = _exact(rows, L)
             made.update(
