@@ -696,18 +696,10 @@ def compute_primitive_set(
         ranks = np.unique([_rank(c[0], c[1:5], L)[0] for c in cands])
         _note(margins, "rank", np.diff(ranks).min() if len(ranks) > 1 else math.inf)
 
-    first = range(min(_AHEAD, len(cands)))  # made with the unit steps: the cheapest candidates
-    rows = straight + [cands[m][1:] for m in first]
-    batch = _make([(*c, cost) for c, cost in zip(rows, _exact(rows, L), strict=True)], r, L)
-    base = [[step] for step in batch[:4]]
-    made = dict(zip(first, batch[4:], strict=True))  # the candidates made (and others, ahead)
     chains = Chains()  # the kept primitives, every heading's
-    for b in base:
-        for p, _ in b:
-            for step in _steps(p):
-                chains.add(*step)
-    per: dict = {}
-    full = 0  # turns (h0, h1 - h0) whose PER_TURN primitives are kept: the rest is skipped
+    per: dict = {}  # primitives kept per turn (h0, h1 - h0)
+    full = 0  # turns whose PER_TURN primitives are kept: the rest is skipped
+    made: dict[int, tuple[Primitive, tuple]] = {}  # the candidates made (and others, ahead)
     reached: set[int] = set()  # candidates a chain already reaches (and always will: kept only grows)
 
     def pruned(m: int, notes: dict | None = None) -> bool:
@@ -722,30 +714,42 @@ def compute_primitive_set(
             reached.add(m)
         return m in reached
 
+    def ahead(n: int) -> list[int]:
+        """Candidate ``n`` and the next that may be kept, :data:`_AHEAD` in all: not made, no
+        chain reaching them, no more of a turn than it has room for."""
+        out, room = [], {}
+        for m in range(n, len(cands)):
+            if len(out) == _AHEAD:
+                break
+            c = cands[m]
+            turn = (c[1], (c[2] - c[1]) % NH)
+            left = room.get(turn, PER_TURN - per.get(turn, 0))
+            if left > 0 and m not in made and not pruned(m):
+                out.append(m)
+                room[turn] = left - 1
+        return out
+
+    def make(batch: list[int], also: tuple = ()) -> list[tuple[Primitive, tuple]]:
+        """Make the candidates ``batch`` (:func:`_exact`, :func:`_make`), and the rows ``also``,
+        whose primitives it returns."""
+        rows = [*also, *(cands[m][1:] for m in batch)]
+        out = _make([(*c, cost) for c, cost in zip(rows, _exact(rows, L), strict=True)], r, L)
+        made.update(zip(batch, out[len(also) :], strict=True))
+        return out[: len(also)]
+
+    base = [[step] for step in make(ahead(0), straight)]  # the unit steps, with the cheapest candidates
+    for b in base:
+        for p, _ in b:
+            for step in _steps(p):
+                chains.add(*step)
     for n, (_, h0, h1, *_) in enumerate(cands):
         if full == 4 * len(TURNS):
             break
         key = (h0, (h1 - h0) % NH)
         if per.get(key, 0) >= PER_TURN or pruned(n, margins):  # margins: every chain compared
             continue
-        if n not in made:  # this one and the next _AHEAD - 1 that may be kept, in one batch
-            ahead, room = [n], {key: PER_TURN - per.get(key, 0) - 1}  # no more of a turn than it has room for
-            for m in range(n + 1, len(cands)):
-                if len(ahead) == _AHEAD:
-                    break
-                c = cands[m]
-                turn = (c[1], (c[2] - c[1]) % NH)
-                left = room.get(turn, PER_TURN - per.get(turn, 0))
-                if left > 0 and m not in made and not pruned(m):
-                    ahead.append(m)
-                    room[turn] = left - 1
-            rows = [cands[m][1:] for m in ahead]
-            costs = _exact(rows, L)
-            made.update(
-                zip(
-                    ahead, _make([(*c, cost) for c, cost in zip(rows, costs, strict=True)], r, L), strict=True
-                )
-            )
+        if n not in made:  # this one and the next that may be kept, in one batch
+            make(ahead(n))
         p, g = made[n]
         if margins is not None:
             _note(margins, "steer", abs(p.peak_curvature - kmax) / kmax)
