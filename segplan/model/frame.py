@@ -122,7 +122,7 @@ def _features(phi0, phi1, ell, degree):
     # every power once, then the monomials ``s**i * q**j * ell**k`` by indexing: the same
     # products in the same order as one expression per monomial, without its 3 x 34 powers
     # (the powers stacked along a first axis, so that indexing copies whole rows, and the
-    # monomials moved to the last axis in one copy at the end: about 1.5x faster)
+    # monomials moved to the last axis in one copy at the end: about 1.2x faster)
     _, i, j, k = _exponent_table(degree)
     sp = np.stack([s**n for n in range(degree + 1)])
     qp = np.stack([q**n for n in range(degree // 2 + 1)])

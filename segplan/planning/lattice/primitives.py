@@ -28,7 +28,7 @@ used cache) and reused by every plan. The sets of the default lattice (45 deg st
 resolutions ``L / 2`` to ``L / 16``: :data:`STORED_CELLS`) are package data for a unit ``L``
 (``primitives.npz``, written with its provenance by ``python -m segplan.fit``, which
 recomputes them with :func:`compute_primitive_set`), scaled to ``L`` when read: a fresh
-process does not compute them (about 0.14 s of CPU for the four).
+process does not compute them (about 0.06 s of CPU for the four).
 
 The selection is the same on every processor. Many candidates tie exactly (a turn and its
 mirror image about a diagonal or an axis of the lattice have the same chord, turn and
@@ -556,9 +556,10 @@ def primitive_set(L: float, max_steer: float, resolution: float) -> PrimitiveSet
     are read from the package data (:data:`DATA_PATH`, written by ``python -m segplan.fit``)
     and scaled by ``L``: a union's shape and LONGD scale with ``L`` and the steering test is
     invariant under the scaling, so the set of any ``L`` is the unit set scaled. Other sets
-    are computed (:func:`compute_primitive_set`: 20-70 ms of CPU for steering limits of 30-60
-    deg at ``L / 2`` to ``L / 16``, more for a robot turning wider). Either way a set is kept
-    (least-recently-used cache of 8 sets: :func:`primitive_set.cache_clear` empties it).
+    are computed (:func:`compute_primitive_set`: 6-25 ms of CPU for steering limits of 30-60
+    deg at ``L / 2`` to ``L / 8``, up to 70 ms at ``L / 16``, more for a robot turning wider).
+    Either way a set is kept (least-recently-used cache of 8 sets:
+    :func:`primitive_set.cache_clear` empties it).
 
     Parameters
     ----------
