@@ -22,12 +22,14 @@ Sets (``--sets``):
   robot's reverse gear on (``--reverse`` per kind).
 
 The results (every floor, and per set the largest count of a floor that planned) go to
-``--out`` (JSON) with when, where and at which commit; the stored run is
-``benchmarks/results/expansions_needed.json``.
+``--out`` (JSON) with when, where and at which commit; the stored runs are in
+``benchmarks/results/expansions_needed/`` (its README says how they were made).
 
 Usage::
 
-    python benchmarks/expansions_needed.py --sets kinds random --out benchmarks/results/expansions_needed.json
+    python benchmarks/expansions_needed.py --sets kinds random --out kinds_random.json
+    python benchmarks/expansions_needed.py --sets large reverse --large 30 --reverse 25 \
+        --out large_reverse.json
 """
 
 from __future__ import annotations

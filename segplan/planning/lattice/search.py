@@ -84,7 +84,8 @@ __all__ = [
 ]
 
 
-#: Default ``max_expansions`` of the lattice search.
+#: Default ``max_expansions`` of the lattice search (measured: see
+#: :class:`segplan.planning.options.LatticeOptions`' ``max_expansions``).
 LATTICE_MAX_EXPANSIONS = 200_000
 
 #: Default ``goal_radius`` of :func:`plan_lattice`: ``a R + b L`` with ``(a, b)`` these.
