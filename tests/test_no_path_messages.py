@@ -10,11 +10,12 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 
 import segplan
 from segplan.cli import EXIT_NO_PATH, main
-from segplan.planning.lattice.search import DEAD_END_TURN, _dead_end
+from segplan.planning.lattice.search import DEAD_END_TURN, _dead_end, _goal_dead_end
 
 #: A 20 x 12 m floor with a bay at its east wall, 3 m wide (2.1 m after the enlargement) and
 #: 7 m deep; the robot (L 1.5 m, half-width 0.45 m, turning radius 1.5 m) starts in it nose in.
@@ -111,3 +112,75 @@ def test_a_search_between_arcs_stopped_by_the_enclosure_limit_does_not_blame_max
     assert info.value.expanded < 20_000
     assert "max_expansions=20000 was reached" not in message
     assert "stopped at the lattice's own limit (its goal looked enclosed" in message
+
+
+#: The bay's goal nose out (facing the bay's open side): a forward-only robot enters the bay
+#: facing in and cannot turn round in it, so the lattice runs to its limit.
+NOSE_OUT_GOAL = _bay((3.0, 6.0, 0.0), (16.0, 6.0, math.pi))
+WAY_OUT = "the goal looks like the way out of a dead end"
+
+
+def test_a_goal_facing_out_of_a_bay_is_named_when_the_lattice_stops_at_its_limit():
+    """The expansion limit: the message says which limit, then what the lattice laid out at
+    the goal showed (every state that reaches the goal faces the bay's way out)."""
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(NOSE_OUT_GOAL, max_expansions=2000)
+    exc = info.value
+    message = str(exc)
+    assert exc.reason == "expansions" and exc.expanded == 2000
+    assert "the expansion limit max_expansions=2000 was reached" in message
+    assert WAY_OUT in message and "drives forward only" in message and "no reverse gear" in message
+    assert "as far as the lattice shows" in message and message.endswith("expanded 2000 states")
+    turn = float(message.split("face at most ")[1].split(" deg")[0])
+    assert turn <= math.degrees(DEAD_END_TURN)
+
+
+def test_the_time_limit_keeps_what_the_lattice_said_about_the_goal():
+    """A time-out's message names the call's time limit (``default._named_limits``) and keeps
+    the lattice's note about the goal."""
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(NOSE_OUT_GOAL, time_limit=0.5)
+    exc = info.value
+    message = str(exc)
+    assert exc.reason == "time" and "the time limit time_limit=0.5 s was reached" in message
+    assert WAY_OUT in message and message.endswith(f"expanded {exc.expanded} states")
+
+
+def test_no_way_out_note_for_an_open_goal_or_a_robot_that_reverses():
+    """An open goal (reached from every side) cut short by the limit, and the bay's goal for a
+    robot with reverse gear: the limit only, no claim about the goal."""
+    open_goal = _bay((3.0, 6.0, math.pi), (8.0, 9.0, 0.5 * math.pi))
+    with pytest.raises(segplan.NoPathError) as info:
+        segplan.plan_scenario(open_goal, max_expansions=40)
+    assert info.value.reason == "expansions" and WAY_OUT not in str(info.value)
+    reversing = segplan.make_scenario(
+        segplan.Robot(1.5, 0.45, math.radians(45), reverse=True),
+        (3.0, 6.0, 0.0), (16.0, 6.0, math.pi), BAY, (0, 0, 20, 12), name="bay",
+    )  # fmt: skip
+    try:
+        segplan.plan_scenario(reversing, max_expansions=50)
+    except segplan.NoPathError as e:
+        assert WAY_OUT not in str(e)
+
+
+class _Approach:
+    """The parts of a goal's approach tree that :func:`_goal_dead_end` reads (one that ran out
+    of states: its own states are those that reach the goal)."""
+
+    keys = [(0, 0, 0)]
+    exhausted = True
+
+    def __init__(self, goal, poses):
+        self.goal, self.poses = goal, np.asarray(poses, dtype=float).reshape(-1, 3)
+
+
+def test_the_way_out_note_needs_every_state_that_reaches_the_goal_to_face_its_way():
+    goal = (5.0, 2.0, math.pi)  # facing west: the states that reach it lie east of it
+    behind = [(5.0 + d, 2.0, math.pi + t) for d, t in ((0.5, 0.1), (1.5, -0.4), (3.0, 0.2))]
+    note = _goal_dead_end(_Approach(goal, behind))
+    assert note is not None and "the 3 states" in note and "within 3 m" in note and "at most 23 deg" in note
+    turned = behind + [(6.0, 3.0, math.pi + DEAD_END_TURN + 0.05)]  # one faces round further
+    assert _goal_dead_end(_Approach(goal, turned)) is None
+    edge = behind + [(6.0, 3.0, math.pi - DEAD_END_TURN)]  # exactly the bound: still a way out
+    assert _goal_dead_end(_Approach(goal, edge)) is not None
+    assert _goal_dead_end(_Approach(goal, [])) is None  # nothing reaches it: not this note

@@ -155,12 +155,15 @@ def _refine(plan: Plan, links, options: DefaultOptions, ctx: PlanningContext) ->
 
 def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOptions) -> NoPathError:
     """The lattice's failure; a time-out names the call's ``time_limit``, not the share the
-    lattice had left."""
+    lattice had left, and keeps what the lattice said about the floor (its ``note``: a goal
+    that looks like the way out of a dead end, :func:`segplan.planning.lattice.search._goal_dead_end`)."""
     if exc.reason != "time":
         return exc
     s, g = ctx.scenario.start, ctx.scenario.goal
+    note = getattr(exc, "note", None)
     message = (
         f"no path from {show_pose(s)} to {show_pose(g)}: the time limit time_limit={options.time_limit:g} s "
-        f"was reached (the paper's search, then the lattice); expanded {exc.expanded} states"
-    )
+        f"was reached (the paper's search, then the lattice)" + (f"; {note}" if note else "")
+        + f"; expanded {exc.expanded} states"
+    )  # fmt: skip
     return NoPathError(message, "time", exc.expanded, exc.generated, exc.seconds, exc.best)

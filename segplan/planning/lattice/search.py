@@ -53,7 +53,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...floor.scenario import Scenario
-from ...model.pose import Pose, show_pose, wrap_ieee
+from ...model.pose import Pose, show_pose, wrap_floor, wrap_ieee
 from ..context import workspace_of
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
@@ -299,9 +299,13 @@ def _lattice_search(
     progress=None,
     reverse_factor=REVERSE_FACTOR,
     cusp_penalty=CUSP_PENALTY,
+    diagnose=False,
 ):
     """:func:`lattice_search` without the escapes (one lattice search, its retry), its
-    unions made by ``links`` (on ``links.ws``); the options checked by :func:`lattice_options`."""
+    unions made by ``links`` (on ``links.ws``); the options checked by :func:`lattice_options`.
+    ``diagnose``: a forward robot's search that stops at a limit says whether its goal looks
+    like the way out of a dead end (:func:`_goal_dead_end`; the call's own search only, not
+    the sub-searches of its escapes and repairs, whose failures are not reported)."""
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
@@ -325,11 +329,12 @@ def _lattice_search(
 
     escapable = ""  # may tight arcs at the start or goal help? (not after a proof)
 
-    def fail(reason, head, expanded, generated, best):
+    def fail(reason, head, expanded, generated, best, note=None):
         exc = NoPathError(f"{head}; expanded {expanded} states", reason, expanded, generated, 0.0, best)
         exc.seconds = time.perf_counter() - t0
         exc.escapable = escapable
         exc.head = head  # the message without its count (the escapes add to both)
+        exc.note = note  # what the message says about the floor beyond the limit, if anything
         raise exc
 
     la, lb = grid.component(np.array([[0.0, 0.0], gl])).tolist()
@@ -385,6 +390,7 @@ def _lattice_search(
         proofs.append((r, outcome, search.approach.enclosure_states, search.reach()))
         if outcome != "exhausted" or k == len(tries) - 1:
             best = search.make_plan(search.chain(search.best), None, expanded_total, t0)
+            note = None  # what a limit's message says about the floor (below)
             if outcome == "exhausted":
                 what = (
                     "every lattice state reachable from the start was expanded at resolution "
@@ -409,6 +415,9 @@ def _lattice_search(
                     "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
                     "time": f"the time limit time_limit={time_limit:g} s was reached",
                 }[outcome]
+                note = _goal_dead_end(search.approach) if diagnose and not robot.reverse else None
+                if note:
+                    what = f"{what}; {note}"
             # tight arcs may help: out of the start and into the goal after an exhausted
             # lattice, into the goal after one that looks enclosed (not after a proof)
             escapable = "both" if outcome == "exhausted" else "goal" if proofs[-1][1] == "enclosed" else ""
@@ -418,6 +427,7 @@ def _lattice_search(
                 expanded_total,
                 len(search.g),
                 best,
+                note,
             )
     raise AssertionError("unreachable")
 
@@ -444,6 +454,45 @@ def _dead_end(proofs: list) -> str | None:
         f"shows: every state it reached lies within {distance:.3g} m of the start and faces at most "
         f"{math.degrees(turn):.0f} deg away from the start's heading; a start facing into a dead "
         "end (a bay walled on three sides, nose in) needs reversing out"
+    )
+
+
+#: States of the goal's lattice up to which :func:`_goal_dead_end` counts those that reach the
+#: goal (more, and it says nothing). Set by hand from the five warehouse floors of
+#: :mod:`segplan.studies.floor_kinds` that end at the expansion limit (027, 036, 071, 083, 092:
+#: 627-2306 such states, ``Schedule.enclosure_limit``'s docstring; BIT* solves none); not tuned.
+GOAL_DEAD_END_STATES = 4000
+
+
+def _goal_dead_end(approach) -> str | None:
+    """What a forward robot's lattice that ran to a limit says about its goal when the goal
+    looks like a dead end seen from the other side: every state of the lattice laid out at the
+    goal from which a chain of primitives reaches it
+    (:meth:`segplan.planning.lattice.approach.GoalApproach.reach_all`, at most
+    :data:`GOAL_DEAD_END_STATES`; its tree's states if it ran out of them) faces at most
+    :data:`DEAD_END_TURN` away from the goal's heading: the goal faces out of a pocket (the
+    closed end of an aisle, nose out), which a forward-only robot enters facing the other
+    way and cannot turn round in. None otherwise (no tree built yet, more states, or one that
+    faces further round). As far as the lattice shows, like :func:`_dead_end`: a union from
+    the start's lattice may still reach the goal."""
+    if approach.keys is None:
+        return None
+    poses = approach.poses if approach.exhausted else approach.reach_all(GOAL_DEAD_END_STATES)
+    if poses is None or not len(poses):
+        return None
+    goal = np.asarray(approach.goal, dtype=float)
+    turn = float(np.abs(wrap_floor(poses[:, 2] - goal[2])).max())
+    if turn > DEAD_END_TURN:
+        return None
+    distance = float(np.hypot(poses[:, 0] - goal[0], poses[:, 1] - goal[1]).max())
+    return (
+        "the goal looks like the way out of a dead end: the robot drives forward only (no "
+        "reverse gear: Robot(..., reverse=True) or segplan plan --reverse lets the default "
+        f"planner back in), and the {len(poses)} states of the lattice laid out at the goal "
+        f"that reach it lie within {distance:.3g} m of it and face at most "
+        f"{math.degrees(turn):.0f} deg away from its heading, as far as the lattice shows; a "
+        "goal facing out of a pocket (the closed end of an aisle, nose out) cannot be reached "
+        "by a robot that enters the pocket facing in and cannot turn round there"
     )
 
 
@@ -774,6 +823,7 @@ def lattice_search(
             links=links,
             schedule=schedule,
             progress=progress,
+            diagnose=True,
             **options,
         )
         return plan
