@@ -15,7 +15,7 @@ import pytest
 
 import segplan
 from segplan.cli import EXIT_NO_PATH, main
-from segplan.planning.lattice.search import DEAD_END_TURN, _dead_end, _goal_dead_end
+from segplan.planning.lattice.dead_end import DEAD_END_TURN, goal_way_out, start_dead_end
 
 #: A 20 x 12 m floor with a bay at its east wall, 3 m wide (2.1 m after the enlargement) and
 #: 7 m deep; the robot (L 1.5 m, half-width 0.45 m, turning radius 1.5 m) starts in it nose in.
@@ -65,9 +65,10 @@ def test_the_paper_search_says_what_its_node_generation_found():
 def test_no_dead_end_where_the_robot_turned():
     """The note needs every try to have stayed within DEAD_END_TURN of the start's heading."""
     stayed = [(0.2, "exhausted", 0, (2.0, math.radians(27))), (0.1, "exhausted", 0, (2.2, DEAD_END_TURN))]
-    assert "within 2.2 m of the start" in _dead_end(stayed) and "at most 90 deg" in _dead_end(stayed)
+    note = start_dead_end(stayed)
+    assert "within 2.2 m of the start" in note and "at most 90 deg" in note
     turned = [stayed[0], (0.1, "exhausted", 0, (2.2, math.radians(117)))]
-    assert _dead_end(turned) is None
+    assert start_dead_end(turned) is None
 
 
 def test_the_command_says_it_in_one_line(tmp_path, capsys):
@@ -164,7 +165,7 @@ def test_no_way_out_note_for_an_open_goal_or_a_robot_that_reverses():
 
 
 class _Approach:
-    """The parts of a goal's approach tree that :func:`_goal_dead_end` reads (one that ran out
+    """The parts of a goal's approach tree that :func:`goal_way_out` reads (one that ran out
     of states: its own states are those that reach the goal)."""
 
     keys = [(0, 0, 0)]
@@ -177,10 +178,10 @@ class _Approach:
 def test_the_way_out_note_needs_every_state_that_reaches_the_goal_to_face_its_way():
     goal = (5.0, 2.0, math.pi)  # facing west: the states that reach it lie east of it
     behind = [(5.0 + d, 2.0, math.pi + t) for d, t in ((0.5, 0.1), (1.5, -0.4), (3.0, 0.2))]
-    note = _goal_dead_end(_Approach(goal, behind))
+    note = goal_way_out(_Approach(goal, behind))
     assert note is not None and "the 3 states" in note and "within 3 m" in note and "at most 23 deg" in note
     turned = behind + [(6.0, 3.0, math.pi + DEAD_END_TURN + 0.05)]  # one faces round further
-    assert _goal_dead_end(_Approach(goal, turned)) is None
+    assert goal_way_out(_Approach(goal, turned)) is None
     edge = behind + [(6.0, 3.0, math.pi - DEAD_END_TURN)]  # exactly the bound: still a way out
-    assert _goal_dead_end(_Approach(goal, edge)) is not None
-    assert _goal_dead_end(_Approach(goal, [])) is None  # nothing reaches it: not this note
+    assert goal_way_out(_Approach(goal, edge)) is not None
+    assert goal_way_out(_Approach(goal, [])) is None  # nothing reaches it: not this note

@@ -156,7 +156,7 @@ def _refine(plan: Plan, links, options: DefaultOptions, ctx: PlanningContext) ->
 def _named_limits(exc: NoPathError, ctx: PlanningContext, options: DefaultOptions) -> NoPathError:
     """The lattice's failure; a time-out names the call's ``time_limit``, not the share the
     lattice had left, and keeps what the lattice said about the floor (its ``note``: a goal
-    that looks like the way out of a dead end, :func:`segplan.planning.lattice.search._goal_dead_end`)."""
+    that looks like the way out of a dead end, :func:`segplan.planning.lattice.dead_end.goal_way_out`)."""
     if exc.reason != "time":
         return exc
     s, g = ctx.scenario.start, ctx.scenario.goal

@@ -53,7 +53,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...floor.scenario import Scenario
-from ...model.pose import Pose, show_pose, wrap_floor, wrap_ieee
+from ...model.pose import Pose, show_pose, wrap_ieee
 from ..context import workspace_of
 from ..dubins import dubins_length_scalar
 from ..links import LinkModel
@@ -62,6 +62,7 @@ from ..schedule import SCHEDULE, Schedule
 from ..validity import Workspace
 from .astar import LatticeAStar
 from .clearance import ClearanceGrid, DistanceField, grid_resolutions
+from .dead_end import DEAD_END_TURN, goal_way_out, start_dead_end
 from .escape import arc_pairs, hop_pairs, improve_with_arcs, join_arcs
 from .legs import Legs
 from .primitives import max_reach, primitive_set
@@ -304,8 +305,9 @@ def _lattice_search(
     """:func:`lattice_search` without the escapes (one lattice search, its retry), its
     unions made by ``links`` (on ``links.ws``); the options checked by :func:`lattice_options`.
     ``diagnose``: a forward robot's search that stops at a limit says whether its goal looks
-    like the way out of a dead end (:func:`_goal_dead_end`; the call's own search only, not
-    the sub-searches of its escapes and repairs, whose failures are not reported)."""
+    like the way out of a dead end (:func:`segplan.planning.lattice.dead_end.goal_way_out`;
+    the call's own search only, not the sub-searches of its escapes and repairs, whose
+    failures are not reported)."""
     robot = scenario.robot
     L, R = robot.L, robot.min_turning_radius
     max_expansions, time_limit = check_limits(max_expansions, time_limit)
@@ -399,7 +401,7 @@ def _lattice_search(
                     "path exists: one may need turns tighter than the lattice's, e.g. a start or "
                     "a goal facing an obstacle close by)"
                 )
-                dead_end = None if robot.reverse else _dead_end(proofs)
+                dead_end = None if robot.reverse else start_dead_end(proofs)
                 if dead_end:
                     what = f"{dead_end}; {what}"
             elif outcome == "enclosed":
@@ -415,7 +417,7 @@ def _lattice_search(
                     "expansions": f"the expansion limit max_expansions={max_expansions} was reached",
                     "time": f"the time limit time_limit={time_limit:g} s was reached",
                 }[outcome]
-                note = _goal_dead_end(search.approach) if diagnose and not robot.reverse else None
+                note = goal_way_out(search.approach) if diagnose and not robot.reverse else None
                 if note:
                     what = f"{what}; {note}"
             # tight arcs may help: out of the start and into the goal after an exhausted
@@ -430,72 +432,6 @@ def _lattice_search(
                 note,
             )
     raise AssertionError("unreachable")
-
-
-#: The largest turn from the start's heading (radians) of every state an exhausted lattice
-#: reached, at or below which the start is reported as a dead end for a forward-only robot:
-#: it never faced sideways, let alone back the way it came.
-DEAD_END_TURN = 0.5 * math.pi
-
-
-def _dead_end(proofs: list) -> str | None:
-    """What an exhausted lattice says first when no state it reached (at every resolution
-    tried, ``proofs``) turned more than :data:`DEAD_END_TURN` from the start's heading: the
-    robot drives forward only and cannot turn around in the space ahead of its start (a bay
-    walled on three sides, nose in). None otherwise."""
-    distance = max(p[3][0] for p in proofs)
-    turn = max(p[3][1] for p in proofs)
-    if turn > DEAD_END_TURN:
-        return None
-    return (
-        "the start looks like a dead end: the robot drives forward only (no reverse gear: "
-        "Robot(..., reverse=True) or segplan plan --reverse lets the default planner back out) "
-        "and cannot turn around in the space ahead of it, as far as the lattice "
-        f"shows: every state it reached lies within {distance:.3g} m of the start and faces at most "
-        f"{math.degrees(turn):.0f} deg away from the start's heading; a start facing into a dead "
-        "end (a bay walled on three sides, nose in) needs reversing out"
-    )
-
-
-#: States of the goal's lattice up to which :func:`_goal_dead_end` counts those that reach the
-#: goal (more, and it says nothing). Set by hand from the five warehouse floors of
-#: :mod:`segplan.studies.floor_kinds` that end at the expansion limit (BIT* solves none),
-#: measured on 2026-12-07 after a 1.5 s time limit: 2306, 939, 3573 and 627 states reach the
-#: goals of 027, 036, 071 and 083 (the flood fill 0.02-0.12 s), 11 236 that of 092 (the
-#: screen-only fill gets past its rack end; 0.07 s to give up); not tuned.
-GOAL_DEAD_END_STATES = 4000
-
-
-def _goal_dead_end(approach) -> str | None:
-    """What a forward robot's lattice that ran to a limit says about its goal when the goal
-    looks like a dead end seen from the other side: every state of the lattice laid out at the
-    goal from which a chain of primitives reaches it
-    (:meth:`segplan.planning.lattice.approach.GoalApproach.reach_all`, at most
-    :data:`GOAL_DEAD_END_STATES`; its tree's states if it ran out of them) faces at most
-    :data:`DEAD_END_TURN` away from the goal's heading: the goal faces out of a pocket (the
-    closed end of an aisle, nose out), which a forward-only robot enters facing the other
-    way and cannot turn round in. None otherwise (no tree built yet, more states, or one that
-    faces further round). As far as the lattice shows, like :func:`_dead_end`: a union from
-    the start's lattice may still reach the goal."""
-    if approach.keys is None:
-        return None
-    poses = approach.poses if approach.exhausted else approach.reach_all(GOAL_DEAD_END_STATES)
-    if poses is None or not len(poses):
-        return None
-    goal = np.asarray(approach.goal, dtype=float)
-    turn = float(np.abs(wrap_floor(poses[:, 2] - goal[2])).max())
-    if turn > DEAD_END_TURN:
-        return None
-    distance = float(np.hypot(poses[:, 0] - goal[0], poses[:, 1] - goal[1]).max())
-    return (
-        "the goal looks like the way out of a dead end: the robot drives forward only (no "
-        "reverse gear: Robot(..., reverse=True) or segplan plan --reverse lets the default "
-        f"planner back in), and the {len(poses)} states of the lattice laid out at the goal "
-        f"that reach it lie within {distance:.3g} m of it and face at most "
-        f"{math.degrees(turn):.0f} deg away from its heading, as far as the lattice shows; a "
-        "goal facing out of a pocket (the closed end of an aisle, nose out) cannot be reached "
-        "by a robot that enters the pocket facing in and cannot turn round there"
-    )
 
 
 def _reverse_costs(options: dict, scenario) -> tuple[float, float]:
