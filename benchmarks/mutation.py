@@ -66,7 +66,7 @@ LATTICE = [
     "tests/test_lattice.py",
     "tests/test_lattice_layers.py",
     "tests/test_lattice_pinned.py",
-    "tests/test_no_path_messages.py",  # the dead end an exhausted lattice reports
+    "tests/test_no_path_messages.py",  # what a failed lattice says of its ends (dead end, way out)
 ]
 TARGETS = {
     # the planner's search and refinement
@@ -177,6 +177,8 @@ TARGETS = {
     "planning/lattice/guide": LATTICE,
     "planning/lattice/escape": LATTICE,
     "planning/lattice/shortcut": LATTICE,
+    "planning/lattice/chains": [*LATTICE, "tests/test_batched_unions.py"],
+    "planning/lattice/dead_end": ["tests/test_no_path_messages.py"],
     "floor/collision": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/sweep": ["tests/test_collision.py", "tests/test_collision_fallbacks.py"],
     "floor/buckets": ["tests/test_buckets.py"],
