@@ -1,6 +1,6 @@
 """How many expansions the default planner needs, floor by floor (issue 25: "no call over 1 s").
 
-Not a timed test. The lattice's expansion limit (``LatticeOptions.max_expansions``, 200 000)
+Not a timed test. The lattice's expansion limit (``LatticeOptions.max_expansions``)
 bounds the calls that fail by running the lattice out; a lower limit would end them sooner
 but lose every floor whose plan needs more. This benchmark measures that trade: for every
 floor of the chosen sets it calls ``segplan.plan_scenario(sc, time_limit=...)`` with the
@@ -35,7 +35,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import dataclasses
+import collections
 import json
 import os
 import sys
@@ -43,12 +43,15 @@ import time
 
 import segplan
 from segplan.studies import ompl_runner
-from segplan.studies.floor_kinds import kind_floor
+from segplan.studies.floor_kinds import FLOOR_KINDS, N_PER_KIND, kind_floor
 from segplan.studies.floors import KINDS, N_FLOORS, hard_cases, random_floor
 from segplan.studies.reverse_floors import REVERSE_KINDS, reverse_floor
+from segplan.studies.reverse_study import with_reverse
 
 #: The 30 x 20 m kinds of the "kinds" set.
-SMALL_KINDS = ("warehouse", "rooms", "parking", "clutter", "robots")
+SMALL_KINDS = tuple(k for k in FLOOR_KINDS if k != "large")
+#: The planner's own expansion limit, the one every call runs with.
+LIMIT = segplan.LatticeOptions().max_expansions
 #: Counts a summary reports how many planned floors needed more than.
 THRESHOLDS = (1_000, 5_000, 20_000, 50_000, 100_000)
 
@@ -56,24 +59,18 @@ THRESHOLDS = (1_000, 5_000, 20_000, 50_000, 100_000)
 def floors(name: str, n_large: int, n_reverse: int):
     """``(floor name, scenario)`` of set ``name`` (module docstring), in a fixed order."""
     if name == "kinds":
-        return [(f"{k}-{i:03d}", kind_floor(k, i)) for k in SMALL_KINDS for i in range(100)]
+        return [(f"{k}-{i:03d}", kind_floor(k, i)) for k in SMALL_KINDS for i in range(N_PER_KIND)]
     if name == "random":
         out = [(f"{k}-{i:03d}", random_floor(k, i)) for k in KINDS for i in range(N_FLOORS)]
         return out + [(f"hard-{n}", sc) for n, sc in hard_cases().items()]
     if name == "large":
         return [(f"large-{i:03d}", kind_floor("large", i)) for i in range(n_large)]
     if name == "reverse":
-        out = []
-        for k in REVERSE_KINDS:
-            for i in range(n_reverse):
-                sc = reverse_floor(k, i)
-                out.append(
-                    (
-                        f"{k}-{i:03d}",
-                        dataclasses.replace(sc, robot=dataclasses.replace(sc.robot, reverse=True)),
-                    )
-                )
-        return out
+        return [
+            (f"{k}-{i:03d}", with_reverse(reverse_floor(k, i)))
+            for k in REVERSE_KINDS
+            for i in range(n_reverse)
+        ]
     raise SystemExit(f"unknown set {name!r}")
 
 
@@ -93,17 +90,14 @@ def summary(rows: list[dict]) -> dict:
     """Per set: floors, planned, the largest counts of planned floors, failures by reason."""
     solved = sorted((r for r in rows if r["solved"]), key=lambda r: r["expanded"])
     failed = [r for r in rows if not r["solved"]]
-    reasons: dict[str, int] = {}
-    for r in failed:
-        reasons[r["reason"]] = reasons.get(r["reason"], 0) + 1
     return {
         "floors": len(rows),
         "planned": len(solved),
         "largest_planned": [[r["floor"], r["expanded"]] for r in solved[-5:]],
         "planned_above": {str(t): sum(r["expanded"] > t for r in solved) for t in THRESHOLDS},
-        "failed": reasons,
+        "failed": dict(collections.Counter(r["reason"] for r in failed)),
         "failed_at_limit": [
-            r["floor"] for r in failed if r["reason"] == "expansions" and r["expanded"] >= 200_000
+            r["floor"] for r in failed if r["reason"] == "expansions" and r["expanded"] >= LIMIT
         ],
     }
 

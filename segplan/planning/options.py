@@ -352,7 +352,7 @@ class LatticeOptions:
         4a98571 (the lattice's first cut). Measured on 2026-12-07 by
         ``benchmarks/expansions_needed.py`` (stored in
         ``benchmarks/results/expansions_needed/``; each call with this limit and a 60 s
-        time limit, so that the counts are the machine's no matter): the planned floors
+        time limit, so that the counts are the same on any machine): the planned floors
         needing the most were, of the 500 30 x 20 m floor kinds, rooms-055 with 14 625
         (OMPL's BIT* solves it; 2.0 s) and warehouse-042 with 5 858; of chapter 9's 410
         random floors and hard cases, any-061 with 113 933 (8.8 s; BIT* at 5 s does not
@@ -362,7 +362,7 @@ class LatticeOptions:
         this limit (warehouse-027, 036, 071, 083, 092: goals facing out of a closed aisle
         end, BIT* solves none) take 15-31 s to it, so with the default ``time_limit`` of
         10 s they end by the time limit (about 140 000 expansions). A limit low enough to
-        end them within a second (about 14 000 expansions there) would lose rooms-055, which
+        end them within a second (6 000-13 000 expansions there) would lose rooms-055, which
         BIT* solves, and the large sites; no single count separates the floors that plan
         from those that do not. Kept.
     schedule : Schedule
