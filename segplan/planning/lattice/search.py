@@ -93,7 +93,7 @@ LATTICE_MAX_EXPANSIONS = 200_000
 GOAL_RADIUS = (2.0, 1.0)
 #: Defaults of ``reverse_factor`` and ``cusp_penalty`` (units of ``L``) of a robot that may
 #: reverse (:class:`segplan.planning.options.LatticeOptions`, where the measurement is).
-REVERSE_FACTOR = 1.25
+REVERSE_FACTOR = 1.15
 CUSP_PENALTY = 0.5
 
 
