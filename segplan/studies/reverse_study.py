@@ -17,6 +17,16 @@ The floors are :mod:`segplan.studies.reverse_floors`. Per floor the study has
 :func:`compare` joins them; :func:`summary` gives per kind the success on the floors that
 need reverse, invalid plans, the front-wheel length over OMPL's (simplified path, as the
 floor-kinds study) and the cusps of both, in the median.
+
+**Both ways in time** (a measurement, not the default planner: ``benchmarks/both_ways.py``,
+book chapter 12). A robot that may reverse can drive any plan from the goal to the start
+backwards in time: the same unions in the other order, each driven the other way (the same
+poses, front-wheel length and swept area; :mod:`segplan.planning.lattice.reverse`). The floor
+with start and goal swapped (:func:`swapped`), planned with ``reverse_factor`` ``1 / f`` and
+``cusp_penalty`` ``p / f`` (:func:`mirrored_costs`), is searched for the same cost up to the
+factor ``f``: its forward links are the real plan's reverse ones. :func:`run_both_ways` plans
+each floor both ways and keeps the plan of lower search cost; :func:`both_ways_summary` sets
+the three side by side.
 """
 
 from __future__ import annotations
@@ -28,11 +38,22 @@ from collections.abc import Sequence
 import pandas as pd
 
 from ..floor.scenario import Scenario, make_scenario
+from ..planning.lattice.reverse import weighted_cost
+from ..planning.options import LatticeOptions
 from . import reverse_floors as rf
 from . import robustness as rb
 from .floors import floor_key
 
-__all__ = ["compare", "run_segplan", "summary", "with_reverse"]
+__all__ = [
+    "both_ways_summary",
+    "compare",
+    "mirrored_costs",
+    "run_both_ways",
+    "run_segplan",
+    "summary",
+    "swapped",
+    "with_reverse",
+]
 
 
 def with_reverse(scenario: Scenario) -> Scenario:
@@ -115,3 +136,81 @@ def summary(table: pd.DataFrame) -> pd.DataFrame:
             }
         )
     return pd.DataFrame(rows)
+
+
+def swapped(scenario: Scenario) -> Scenario:
+    """The floor planned backwards in time (module docstring): start and goal swapped, the same name."""
+    return dataclasses.replace(scenario, start=scenario.goal, goal=scenario.start)
+
+
+def mirrored_costs(options: LatticeOptions | None = None) -> dict:
+    """The lattice options of :func:`swapped` floors: ``reverse_factor`` ``1 / f`` and
+    ``cusp_penalty`` ``p / f`` for ``options``' ``f`` and ``p`` (the defaults if None), so
+    that a swapped plan's search cost is ``1 / f`` times the real plan's (module docstring)."""
+    o = LatticeOptions() if options is None else options
+    return {"reverse_factor": 1.0 / o.reverse_factor, "cusp_penalty": o.cusp_penalty / o.reverse_factor}
+
+
+def run_both_ways(
+    kinds: Sequence[str] = rf.REVERSE_KINDS, n: int = rf.N_PER_KIND, progress=None
+) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame]:
+    """The first ``n`` floors of each of ``kinds`` with reverse gear, planned by the default
+    planner (the default costs) and again :func:`swapped` with :func:`mirrored_costs`, each
+    plan checked by the dense oracle: ``(default, swapped, kept)``, each the rows of
+    :func:`run_segplan` with ``search_cost`` (the real plan's, inf without a plan); ``kept``
+    has per floor the valid plan of lower search cost (the default's on a tie), ``kept``
+    naming it and ``seconds`` and ``cpu_seconds`` those of both calls."""
+    lo = LatticeOptions()
+    f, p = lo.reverse_factor, lo.cusp_penalty
+    floors = [(k, sc) for k in kinds for sc in rf.reverse_floors(k, n)]
+    keys = [floor_key(sc) for _, sc in floors]
+    ahead = [(k, with_reverse(sc)) for k, sc in floors]
+    default, plans = rb.run_segplan(ahead, None, progress)
+    back, back_plans = rb.run_segplan(
+        [(k, swapped(sc)) for k, sc in ahead], {"lattice": mirrored_costs()}, progress
+    )
+    costs: dict[str, list] = {"default": [], "swapped": []}
+    for _, sc in ahead:
+        pen = p * sc.robot.L
+        pa, pb = plans[sc.name], back_plans[sc.name]
+        costs["default"].append(math.inf if pa is None else weighted_cost(pa, f, pen))
+        costs["swapped"].append(math.inf if pb is None else f * weighted_cost(pb, 1.0 / f, pen / f))
+    default = default.assign(floor_key=keys, search_cost=costs["default"])
+    back = back.assign(floor_key=keys, search_cost=costs["swapped"])
+    ok_a, ok_b = default["solved"] & default["valid"], back["solved"] & back["valid"]
+    take = ok_b & (~ok_a | (back["search_cost"] < default["search_cost"]))
+    kept = default.where(~take, back).assign(
+        kept=["swapped" if t else "default" for t in take],
+        seconds=default["seconds"] + back["seconds"],
+        cpu_seconds=default["cpu_seconds"] + back["cpu_seconds"],
+    )
+    return default, back, kept
+
+
+def both_ways_summary(
+    default: pd.DataFrame, swapped_rows: pd.DataFrame, kept: pd.DataFrame, reeds_shepp: pd.DataFrame,
+    dubins: pd.DataFrame,
+) -> pd.DataFrame:  # fmt: skip
+    """Per kind and for all floors (``"all"``): the front-wheel length over OMPL's
+    (:func:`compare`, median and worst) and the invalid plans of the default, the swapped and
+    the kept plans (:func:`run_both_ways`), the swapped plans kept, and the median times of
+    the default and of both calls (s)."""
+    tables = {
+        name: compare(t, reeds_shepp, dubins)
+        for name, t in (("default", default), ("swapped", swapped_rows), ("kept", kept))
+    }
+    rows = []
+    for kind in [*kept["group"].unique(), "all"]:
+        row: dict = {"kind": kind}
+        for name, t in tables.items():
+            g = t if kind == "all" else t[t["group"] == kind]
+            r = g["ratio"].dropna()
+            row[f"{name} median"], row[f"{name} worst"] = float(r.median()), float(r.max())
+            row[f"{name} invalid"] = int((g["solved"] & ~g["valid"]).sum())
+        k = kept if kind == "all" else kept[kept["group"] == kind]
+        d = default if kind == "all" else default[default["group"] == kind]
+        row["swapped kept"] = int((k["kept"] == "swapped").sum())
+        row["time median, default (s)"] = float(d["seconds"].median())
+        row["time median, both (s)"] = float(k["seconds"].median())
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("kind")
