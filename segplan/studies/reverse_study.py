@@ -83,10 +83,19 @@ def run_segplan(
         floors = [(k, sc) for k in kinds for sc in rf.reverse_floors(k, n)]
     else:
         floors = [(k, rf.reverse_floor(k, int(i))) for k in kinds for i in indices]
-    table, plans = rb.run_segplan([(k, with_reverse(sc)) for k, sc in floors], options, progress)
+    return _planned(floors, options, progress)[0]
+
+
+def _planned(floors: list, options: dict | None, progress, ends=None) -> tuple[pd.DataFrame, dict]:
+    """:func:`run_segplan`'s rows of ``floors`` (``(kind, forward-only floor)``), each given
+    reverse gear and then ``ends`` (None: as it is; :func:`swapped`), and the plans by name."""
+    planned = [(k, with_reverse(sc)) for k, sc in floors]
+    if ends is not None:
+        planned = [(k, ends(sc)) for k, sc in planned]
+    table, plans = rb.run_segplan(planned, options, progress)
     table["floor_key"] = [floor_key(sc) for _, sc in floors]
     table["cusps"] = [math.nan if plans[sc.name] is None else len(plans[sc.name].cusps) for _, sc in floors]
-    return table
+    return table, plans
 
 
 def compare(seg: pd.DataFrame, reeds_shepp: pd.DataFrame, dubins: pd.DataFrame) -> pd.DataFrame:
@@ -157,26 +166,23 @@ def run_both_ways(
     """The first ``n`` floors of each of ``kinds`` with reverse gear, planned by the default
     planner (the default costs) and again :func:`swapped` with :func:`mirrored_costs`, each
     plan checked by the dense oracle: ``(default, swapped, kept)``, each the rows of
-    :func:`run_segplan` with ``search_cost`` (the real plan's, inf without a plan); ``kept``
+    :func:`run_segplan` (the swapped plan's ``cusps``: the real plan's too) with
+    ``search_cost`` (the real plan's, inf without a plan); ``kept``
     has per floor the valid plan of lower search cost (the default's on a tie), ``kept``
     naming it and ``seconds`` and ``cpu_seconds`` those of both calls."""
     lo = LatticeOptions()
     f, p = lo.reverse_factor, lo.cusp_penalty
     floors = [(k, sc) for k in kinds for sc in rf.reverse_floors(k, n)]
-    keys = [floor_key(sc) for _, sc in floors]
-    ahead = [(k, with_reverse(sc)) for k, sc in floors]
-    default, plans = rb.run_segplan(ahead, None, progress)
-    back, back_plans = rb.run_segplan(
-        [(k, swapped(sc)) for k, sc in ahead], {"lattice": mirrored_costs()}, progress
-    )
+    default, plans = _planned(floors, None, progress)
+    back, back_plans = _planned(floors, {"lattice": mirrored_costs()}, progress, swapped)
     costs: dict[str, list] = {"default": [], "swapped": []}
-    for _, sc in ahead:
+    for _, sc in floors:
         pen = p * sc.robot.L
         pa, pb = plans[sc.name], back_plans[sc.name]
         costs["default"].append(math.inf if pa is None else weighted_cost(pa, f, pen))
         costs["swapped"].append(math.inf if pb is None else f * weighted_cost(pb, 1.0 / f, pen / f))
-    default = default.assign(floor_key=keys, search_cost=costs["default"])
-    back = back.assign(floor_key=keys, search_cost=costs["swapped"])
+    default = default.assign(search_cost=costs["default"])
+    back = back.assign(search_cost=costs["swapped"])
     ok_a, ok_b = default["solved"] & default["valid"], back["solved"] & back["valid"]
     take = ok_b & (~ok_a | (back["search_cost"] < default["search_cost"]))
     kept = default.where(~take, back).assign(
