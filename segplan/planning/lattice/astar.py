@@ -40,6 +40,14 @@ steering limit):
   enclosure test, which knows forward approaches only, does not stop the search, and the
   coarse lattice's cost-to-go (forward) does not guide it.
 
+  Tried on 2026-12-07 and not kept: a second approach tree of *backward* arrivals (the
+  states reached from the goal by forward primitives, joined by a reverse union and driven
+  backwards to the goal). On the reverse study's 400 floors it changed 29 plans (12 shorter,
+  17 longer, mostly reverse parkings), left every kind's median and worst length as they
+  were (dead-end-022 still 1.200 times OMPL's: with the weight 2 its better route, two
+  cusps and a reverse arrival, is never expanded) and made the k-turns' median time about
+  a third longer (1.06 -> 1.42 s, one run each).
+
 When each mechanism starts and how much it does: :class:`segplan.planning.schedule.Schedule`.
 """
 

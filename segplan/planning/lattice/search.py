@@ -590,7 +590,13 @@ def _escape(
 #: The expansions of a reversing robot's first, quick lattice search (:func:`_quick_then_escape`).
 #: Set by hand: the reverse study's bay-out, reverse-park and dead-end floors took at most 784
 #: expansions (every fourth floor, 75 in all; ``segplan.studies.reverse_floors``), and its
-#: k-turns took 1-3 s or failed at the time limit; not tuned.
+#: k-turns took 1-3 s or failed at the time limit; not tuned. Lower values measured on
+#: 2026-12-07 on all 400 floors of the reverse study (``reverse_study.run_segplan``, the
+#: default costs; lengths over OMPL's stored Reeds-Shepp BIT*, which do not depend on the
+#: machine): 500 changes 8 plans (3 shorter, 5 longer), every kind's median and worst as at
+#: 1000; 250 changes 21 (13 shorter, 8 longer) but k-turn-095 goes to 1.159 times OMPL's,
+#: over issue 26's 1.15 (k-turn worst 1.132 at 1000). Neither is kept (250 saved about a
+#: tenth of the k-turns' median time, with both runs sharing the machine: no timing result).
 QUICK_EXPANSIONS = 1000
 
 
