@@ -492,20 +492,36 @@ def _grid_of(sc):
     gap=st.floats(2.0, 9.0),
 )
 def test_the_corridor_is_the_box_of_every_cell_of_a_route_short_enough(extra, share, gap):
-    """Brute force over the field's cells: the box holds exactly the cells (and spans them) whose
-    octile distances from start and goal sum to at most the shortest route's, grown."""
+    """Brute force over the field's cells: the corridor keeps exactly the cells whose octile
+    distances from start and goal sum to at most the shortest route's, grown; its box spans
+    them, and its near cells are them and their neighbours."""
     from segplan.planning.lattice.clearance import DistanceField
 
     wall = _rect(9.9, 0.0, 10.1, 12.0 - gap)  # a wall with a gap of ``gap`` at the top
     sc = _scenario((2.0, 2.0, 0.0), (16.0, 2.0, 0.0), [wall])
     grid, (gx, gy, _) = _grid_of(sc)
     field = DistanceField(grid, (gx, gy), 0.25)
-    box = field.corridor((0.0, 0.0), extra, share)
+    corridor = field.corridor((0.0, 0.0), extra, share)
+    box = corridor.box
     total = field.octile_from((0.0, 0.0)) + field.octile_goal
     best = total.min()
-    ii, jj = np.nonzero(total <= best * (1 + share + 1e-9) + extra)
+    kept = total <= best * (1 + share + 1e-9) + extra
+    assert np.array_equal(corridor.cells, kept)
+    ii, jj = np.nonzero(kept)
     X, Y = field.x0 + ii * field.c, field.y0 + jj * field.c
     assert box == (X.min(), Y.min(), X.max() + field.c, Y.max() + field.c)
+    # near: a kept cell within one cell (8-neighbourhood), by brute force
+    ni, nj = np.nonzero(corridor.near)
+    for a, b in zip(ni, nj, strict=True):
+        assert kept[max(a - 1, 0) : a + 2, max(b - 1, 0) : b + 2].any()
+    assert corridor.near[kept].all()
+    assert corridor.area == pytest.approx(len(ni) * field.c**2)
+    # covers: a point lies in a near cell (cell centres, and points off the field)
+    cx = field.x0 + (np.arange(-2, field.nx + 2) + 0.5) * field.c
+    cy = field.y0 + (np.arange(-2, field.ny + 2) + 0.5) * field.c
+    inside = np.zeros((field.nx + 4, field.ny + 4), dtype=bool)
+    inside[2:-2, 2:-2] = corridor.near
+    assert np.array_equal(corridor.covers(cx, cy), inside)
     # both ends inside; the route over the gap (above the wall's top) inside
     for x, y in ((0.0, 0.0), (gx, gy)):
         assert box[0] <= x <= box[2] and box[1] <= y <= box[3]
@@ -525,9 +541,10 @@ def test_the_corridor_is_none_where_the_ends_are_not_joined():
 
 
 def test_a_guide_too_large_for_the_whole_grid_is_built_over_the_window(monkeypatch):
-    """With a state budget below the whole grid's, the guide is built over the corridor's box
+    """With a state budget below the whole grid's, the guide is built over the corridor's cells
     (grown while the start has no coarse route in it): the same estimates inside the window
-    where the whole grid's route stays inside it, ``inf`` outside it."""
+    where the whole grid's route stays inside it, never below the whole grid's (a part of its
+    graph), ``inf`` outside it."""
     import segplan.planning.lattice.guide as guide_module
     from segplan.planning.lattice.clearance import DistanceField
 
@@ -549,8 +566,17 @@ def test_a_guide_too_large_for_the_whole_grid_is_built_over_the_window(monkeypat
     assert windowed.build() and asked == [1.0]  # the start has a route in the first window
     assert SCHEDULE.guide_box(field, 1.0, 1.0, 2.0) == field.corridor((0.0, 0.0), 16.0, 0.2)
     f = windowed.field
-    assert f.nx * f.ny * 16 <= states // 2 < states
-    box = window(asked[-1])
+    corridor = window(asked[-1])
+    box = corridor.box
+    X, Y = (np.arange(f.nx) + f.I0) * f.rc, (np.arange(f.ny) + f.J0) * f.rc
+    inside = corridor.covers(X, Y)
+    assert inside.sum() * 16 <= states // 2 < states
+    assert np.isinf(f.table[~inside]).all()  # no estimate off the corridor
+    w = whole.field  # the same coarse lattice (cell, origin) over the whole grid
+    assert w.rc == f.rc
+    part = w.table[f.I0 - w.I0 : f.I0 - w.I0 + f.nx, f.J0 - w.J0 : f.J0 - w.J0 + f.ny]
+    assert part.shape == f.table.shape
+    assert (f.table[inside] >= part[inside] * (1 - 1e-12)).all()
     assert f.estimate(0.0, 0.0, 0) < math.inf
     # a straight run along the room: the window's estimate equals the whole grid's there
     for x in (0.0, 4.0, 8.0):

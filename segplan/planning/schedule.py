@@ -90,10 +90,12 @@ class Schedule:
     guide_window : (float, float, float)
         ``(a, b, c)``: where the coarse cost-to-go over the whole grid would exceed
         :data:`segplan.planning.lattice.guide.MAX_STATES` states (floors of more than about
-        100 x 100 m for ``L`` = 1.5 m), it is built over the box of the cells through which
-        the rear point's shortest route over the free cells
+        100 x 100 m for ``L`` = 1.5 m), it is built over the cells (and their neighbours)
+        through which the rear point's shortest route over the free cells
         (:meth:`segplan.planning.lattice.clearance.DistanceField.corridor`) grows by at most
-        ``a L + b R + c D`` (``D`` that route's length). Measured (issue 25) on the "large"
+        ``a L + b R + c D`` (``D`` that route's length); until 2026-12-07 over their box, which
+        on diagonal and L-shaped routes holds about twice the states (see
+        :data:`segplan.planning.lattice.guide.MAX_BOX_STATES`). Measured (issue 25) on the "large"
         sites of :mod:`segplan.studies.floor_kinds` (111-185 x 75-125 m, ``D`` 30-150 m):
         without a guide 4 of the first 10 were solved within the 10 s time limit; with the
         guide over the window all 10 (figures in ``benchmarks/results/floor_kinds_*``); a
@@ -168,7 +170,8 @@ class Schedule:
 
     def guide_box(self, field, L: float, R: float, scale: float = 1.0):
         """The window of the coarse cost-to-go (:attr:`guide_window`, its slack times ``scale``)
-        from the lattice's origin, the start: a box of ``field``'s corridor, or None."""
+        from the lattice's origin, the start: ``field``'s corridor
+        (:class:`segplan.planning.lattice.clearance.Corridor`), or None."""
         a, b, c = self.guide_window
         return field.corridor((0.0, 0.0), scale * (a * L + b * R), scale * c)
 

@@ -21,6 +21,7 @@ from ...floor.scenario import Scenario
 __all__ = [
     "MAX_CELLS",
     "ClearanceGrid",
+    "Corridor",
     "DistanceField",
     "grid_resolutions",
     "obstacles_near",
@@ -299,11 +300,10 @@ class DistanceField:
             return dijkstra(self._graph, directed=False, indices=index).reshape(self.nx, self.ny)
         return None
 
-    def corridor(self, start_xy, extra: float, share: float = 0.0) -> tuple[float, ...] | None:
-        """The box ``(xmin, ymin, xmax, ymax)`` (lattice frame) of the coarse cells through which
-        a route from ``start_xy`` to the goal is at most ``extra`` (m) plus ``share`` times the
-        shortest route longer than the shortest route over the free cells (the sum of the
-        octile distances from both ends).
+    def corridor(self, start_xy, extra: float, share: float = 0.0) -> Corridor | None:
+        """The :class:`Corridor` of the cells through which a route from ``start_xy`` to the
+        goal is at most ``extra`` (m) plus ``share`` times the shortest route longer than the
+        shortest route over the free cells (the sum of the octile distances from both ends).
 
         None where either end's cell is not free or the two are not joined.
         """
@@ -316,14 +316,7 @@ class DistanceField:
             return None
         # the sums along one shortest route differ in their last bits (other summation
         # orders): a relative 1e-9 keeps every cell of it
-        ii, jj = np.nonzero(total <= best * (1.0 + share + 1e-9) + extra)
-        c = self.c
-        return (
-            self.x0 + float(ii.min()) * c,
-            self.y0 + float(jj.min()) * c,
-            self.x0 + float(ii.max() + 1) * c,
-            self.y0 + float(jj.max() + 1) * c,
-        )
+        return Corridor(total <= best * (1.0 + share + 1e-9) + extra, self.x0, self.y0, self.c)
 
     def cell(self, x: float, y: float) -> tuple[int, int]:
         return int(math.floor((x - self.x0) / self.c)), int(math.floor((y - self.y0) / self.c))
@@ -334,6 +327,60 @@ class DistanceField:
         if 0 <= i < self.nx and 0 <= j < self.ny:
             return float(self.table[i, j])
         return 0.0
+
+
+class Corridor:
+    """Cells of a :class:`DistanceField` that a route short enough passes through
+    (:meth:`DistanceField.corridor`), and their box: where the lattice's guide is built on
+    floors too large for a guide over the whole grid (:mod:`segplan.planning.lattice.guide`).
+
+    Parameters
+    ----------
+    cells : ndarray of bool (nx, ny)
+        The field's cells kept (at least one).
+    x0, y0, c : float
+        The field's corner and cell (m, lattice frame).
+
+    Attributes
+    ----------
+    box : (xmin, ymin, xmax, ymax)
+        The box of the cells kept (lattice frame).
+    near : ndarray of bool (nx, ny)
+        The cells kept and their neighbours (the cells a guide is built over: a state at the
+        corridor's edge keeps the primitives that leave it).
+    area : float
+        The area of :attr:`near` (m^2).
+    """
+
+    def __init__(self, cells: np.ndarray, x0: float, y0: float, c: float):
+        ii, jj = np.nonzero(cells)
+        self.cells, self.x0, self.y0, self.c = cells, x0, y0, c
+        self.box = (
+            x0 + float(ii.min()) * c,
+            y0 + float(jj.min()) * c,
+            x0 + float(ii.max() + 1) * c,
+            y0 + float(jj.max() + 1) * c,
+        )
+        self.near = near = ndimage.binary_dilation(cells, np.ones((3, 3), dtype=bool))
+        self.area = float(near.sum()) * c * c
+
+    def covers(self, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+        """``(len(X), len(Y))`` booleans: the point ``(X[i], Y[j])`` lies in :attr:`near`."""
+        near = self.near
+        i = np.floor((np.asarray(X) - self.x0) / self.c).astype(np.int64)
+        j = np.floor((np.asarray(Y) - self.y0) / self.c).astype(np.int64)
+        oki, okj = (i >= 0) & (i < near.shape[0]), (j >= 0) & (j < near.shape[1])
+        out = near[np.where(oki, i, 0)[:, None], np.where(okj, j, 0)[None, :]]
+        return out & oki[:, None] & okj[None, :]
+
+    def __eq__(self, other) -> bool:
+        return (
+            isinstance(other, Corridor)
+            and (self.x0, self.y0, self.c) == (other.x0, other.y0, other.c)
+            and np.array_equal(self.cells, other.cells)
+        )
+
+    __hash__ = None
 
 
 def union_points(u) -> tuple[np.ndarray, float]:

@@ -42,6 +42,7 @@ __all__ = [
     "COARSE_CELLS",
     "FINER_CELLS",
     "FINER_TURN",
+    "MAX_BOX_STATES",
     "MAX_STATES",
     "SEED_RADIUS",
     "Guide",
@@ -57,6 +58,12 @@ FINER_CELLS = 4
 FINER_TURN = 1.05
 #: Coarse lattices larger than this many states are not built (the search keeps its bounds).
 MAX_STATES = 400_000
+#: ... nor those whose window's box (:class:`HeadingField`'s ``window``) would hold more than
+#: this many states: the cost-to-go table and the primitives' tests span the box, the graph
+#: only the corridor's cells. Set by hand (issue 25; 13 MB of table), not measured: the
+#: corridors of the "large" sites of :mod:`segplan.studies.floor_kinds` whose guide it lets
+#: be built have boxes of 0.4-0.6 million states.
+MAX_BOX_STATES = 1_600_000
 #: Coarse states within this many coarse cells of the goal, at most one heading step from
 #: its heading, seed the Dijkstra.
 SEED_RADIUS = 3.0
@@ -81,9 +88,10 @@ class HeadingField:
         The goal in the lattice frame.
     resolution : float
         Coarse cell (m); a multiple of ``grid.cell``.
-    window : (xmin, ymin, xmax, ymax) or None
-        Build the coarse lattice only over this box (lattice frame; :meth:`Guide.build`):
-        outside it the cost-to-go is ``inf``. None: the whole grid.
+    window : segplan.planning.lattice.clearance.Corridor or None
+        Build the coarse lattice only over the corridor's cells (:attr:`Corridor.near`,
+        within its box; lattice frame; :meth:`Guide.build`): elsewhere the cost-to-go is
+        ``inf``. None: the whole grid.
 
     Attributes
     ----------
@@ -112,14 +120,19 @@ class HeadingField:
         J0 = -(-(grid.j0 + m) // q)
         J1 = (grid.j0 + grid.ny - m) // q
         if window is not None:
-            I0, J0 = max(I0, math.floor(window[0] / rc)), max(J0, math.floor(window[1] / rc))
-            I1, J1 = min(I1, math.ceil(window[2] / rc)), min(J1, math.ceil(window[3] / rc))
+            box = window.box
+            I0, J0 = max(I0, math.floor(box[0] / rc)), max(J0, math.floor(box[1] / rc))
+            I1, J1 = min(I1, math.ceil(box[2] / rc)), min(J1, math.ceil(box[3] / rc))
         self.I0, self.J0 = I0, J0
         self.nx, self.ny = nx, ny = max(I1 - I0 + 1, 0), max(J1 - J0 + 1, 0)
         n = nx * ny * NH
         self.table = np.full((nx, ny, NH), np.inf)
         if n == 0:
             return
+        X = (np.arange(nx) + I0) * rc
+        Y = (np.arange(ny) + J0) * rc
+        # the coarse cells of the window's corridor (every cell without a window)
+        inside = np.ones((nx, ny), dtype=bool) if window is None else window.covers(X, Y)
         # a primitive's sample at cell offset (di, dj) from its start, over every coarse state:
         # the grid's blocked cells on a strided slice (every q-th cell from the lattice's corner)
         blocked = grid.blocked
@@ -145,6 +158,10 @@ class HeadingField:
             # the end state on the coarse lattice, and the primitive free of blocked cells
             ok = (ii + di >= 0) & (ii + di < nx) & (jj + dj >= 0) & (jj + dj < ny) & ~bad
             k, si, sj = np.nonzero(ok)
+            if window is not None:  # both ends in the corridor
+                di_k, dj_k = di.ravel()[k], dj.ravel()[k]
+                both = inside[si, sj] & inside[si + di_k, sj + dj_k]
+                k, si, sj = k[both], si[both], sj[both]
             start = (si * ny + sj) * NH
             # reversed edges: from the end state to the start state
             rows.append(start + ((di * ny + dj) * NH + h1).ravel()[k])
@@ -154,8 +171,6 @@ class HeadingField:
         # length to the goal (the final union)
         gx, gy, gth = goal
         rad = SEED_RADIUS * rc
-        X = (np.arange(nx) + I0) * rc
-        Y = (np.arange(ny) + J0) * rc
         near_x = np.abs(X - gx) <= rad
         near_y = np.abs(Y - gy) <= rad
         si, sj, sh = np.meshgrid(np.nonzero(near_x)[0], np.nonzero(near_y)[0], np.arange(NH), indexing="ij")
@@ -202,15 +217,19 @@ class HeadingField:
     @staticmethod
     def resolution(grid, L: float, cells: int = COARSE_CELLS, window=None) -> float | None:
         """The coarse cell for ``grid`` (``L / cells``), or None if that is not a
-        multiple of the grid's cell or the coarse lattice (over ``window`` if given, a box
-        as in :class:`HeadingField`) would exceed :data:`MAX_STATES`."""
+        multiple of the grid's cell or the coarse lattice (over ``window`` if given, a
+        corridor as in :class:`HeadingField`) would exceed :data:`MAX_STATES` states, or its
+        window's box :data:`MAX_BOX_STATES`."""
         rc = L / cells
         q = rc / grid.cell
         if abs(q - round(q)) > 1e-9 or round(q) < 1:
             return None
         area = grid.nx * grid.ny * grid.cell**2
         if window is not None:
-            area = min(area, (window[2] - window[0] + 2 * rc) * (window[3] - window[1] + 2 * rc))
+            box = window.box
+            if (box[2] - box[0] + 2 * rc) * (box[3] - box[1] + 2 * rc) / (rc * rc) * NH > MAX_BOX_STATES:
+                return None
+            area = min(area, window.area)
         if area / (rc * rc) * NH > MAX_STATES:
             return None
         return rc
@@ -235,9 +254,9 @@ class Guide:
         The goal in the lattice frame.
     window : callable or None
         Called where the whole grid's coarse lattice would exceed :data:`MAX_STATES`, with a
-        scale of its slack (1, then doubled while the start has no coarse route in it): a box
-        ``(xmin, ymin, xmax, ymax)`` (lattice frame) to build the lattice over instead, or
-        None. The search hands the corridor of its distance field
+        scale of its slack (1, then doubled while the start has no coarse route in it): a
+        :class:`segplan.planning.lattice.clearance.Corridor` (lattice frame) to build the
+        lattice over instead, or None. The search hands the corridor of its distance field
         (:meth:`segplan.planning.lattice.clearance.DistanceField.corridor`).
 
     Attributes
@@ -290,14 +309,14 @@ class Guide:
         L = self.robot.L
         scale, tried = 1.0, None
         while True:
-            box = self.window(scale)
-            if box is None or box == tried:
+            corridor = self.window(scale)
+            if corridor is None or corridor == tried:
                 break
-            rc = HeadingField.resolution(self.grid, L, window=box)
+            rc = HeadingField.resolution(self.grid, L, window=corridor)
             if rc is None:
                 break
-            self.field = HeadingField(self.grid, self.robot, self.goal, rc, box)
+            self.field = HeadingField(self.grid, self.robot, self.goal, rc, corridor)
             if self.field.estimate(0.0, 0.0, 0) < math.inf:
                 break
-            scale, tried = 2.0 * scale, box
+            scale, tried = 2.0 * scale, corridor
         return self.field is not None
