@@ -86,7 +86,15 @@ class Schedule:
         The weight on ``h'`` once the guide is built (at most the search's own: a closer
         estimate needs less weight). Set with the guide in 4f681d4, whose measurement is of the
         guide as a whole (400 random floors: any headings 137 -> 149 of OMPL's 149 solved);
-        this value alone not measured.
+        this value alone not measured. A weight of its own for guides built over a window
+        (:attr:`guide_window`) was tried and not kept (issue 25, 2026-12-07, two runs at a
+        time on this project's 2-core machine, the default limits): at 1.4 on the first 100
+        "large" sites of :mod:`segplan.studies.floor_kinds` 42 instead of 40 of the 43 floors
+        OMPL's BIT* solves planned (none lost), the 100 calls took 159 instead of 186 s and
+        the plans' mean length was unchanged; but on the held-out large sites 100-199 it
+        planned the same 89 floors, 44 plans longer and 22 shorter (mean +0.57 %, largest
+        +24.6 %), 160 instead of 170 s. (1.6 and 2.0 for every guide, on the first 50 floors of
+        each 30 x 20 m kind: no faster median, longer worst plans, rooms 1.365 -> 1.462.)
     guide_window : (float, float, float)
         ``(a, b, c)``: where the coarse cost-to-go over the whole grid would exceed
         :data:`segplan.planning.lattice.guide.MAX_STATES` states (floors of more than about
