@@ -102,7 +102,7 @@ class Schedule:
         through which the rear point's shortest route over the free cells
         (:meth:`segplan.planning.lattice.clearance.DistanceField.corridor`) grows by at most
         ``a L + b R + c D`` (``D`` that route's length); until 2026-12-07 over their box, which
-        on diagonal and L-shaped routes holds about twice the states (see
+        held 1.4-2.3 times the corridor's states on the first 8 large sites (see
         :data:`segplan.planning.lattice.guide.MAX_BOX_STATES`). Measured (issue 25) on the "large"
         sites of :mod:`segplan.studies.floor_kinds` (111-185 x 75-125 m, ``D`` 30-150 m):
         without a guide 4 of the first 10 were solved within the 10 s time limit; with the
