@@ -89,9 +89,9 @@ class HeadingField:
     resolution : float
         Coarse cell (m); a multiple of ``grid.cell``.
     window : segplan.planning.lattice.clearance.Corridor or None
-        Build the coarse lattice only over the corridor's cells (:attr:`Corridor.near`,
-        within its box; lattice frame; :meth:`Guide.build`): elsewhere the cost-to-go is
-        ``inf``. None: the whole grid.
+        Build the coarse lattice only over the corridor's cells
+        (:attr:`segplan.planning.lattice.clearance.Corridor.near`, within its box; lattice
+        frame; :meth:`Guide.build`): elsewhere the cost-to-go is ``inf``. None: the whole grid.
 
     Attributes
     ----------
