@@ -380,8 +380,6 @@ class Corridor:
             and np.array_equal(self.cells, other.cells)
         )
 
-    __hash__ = None
-
 
 def union_points(u) -> tuple[np.ndarray, float]:
     """World points of a union's swept segment and their covering radius (as the primitives')."""

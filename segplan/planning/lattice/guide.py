@@ -131,8 +131,8 @@ class HeadingField:
             return
         X = (np.arange(nx) + I0) * rc
         Y = (np.arange(ny) + J0) * rc
-        # the coarse cells of the window's corridor (every cell without a window)
-        inside = np.ones((nx, ny), dtype=bool) if window is None else window.covers(X, Y)
+        # the coarse cells of the window's corridor (None: every cell)
+        inside = None if window is None else window.covers(X, Y)
         # a primitive's sample at cell offset (di, dj) from its start, over every coarse state:
         # the grid's blocked cells on a strided slice (every q-th cell from the lattice's corner)
         blocked = grid.blocked
@@ -158,7 +158,7 @@ class HeadingField:
             # the end state on the coarse lattice, and the primitive free of blocked cells
             ok = (ii + di >= 0) & (ii + di < nx) & (jj + dj >= 0) & (jj + dj < ny) & ~bad
             k, si, sj = np.nonzero(ok)
-            if window is not None:  # both ends in the corridor
+            if inside is not None:  # both ends in the corridor
                 di_k, dj_k = di.ravel()[k], dj.ravel()[k]
                 both = inside[si, sj] & inside[si + di_k, sj + dj_k]
                 k, si, sj = k[both], si[both], sj[both]
