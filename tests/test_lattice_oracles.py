@@ -271,6 +271,32 @@ def test_the_guided_search_expands_each_state_once_and_only_lowers_g():
     assert not dearer_reparents(s)
 
 
+def test_an_escalating_search_keeps_its_bookkeeping_and_multiplies_its_weight():
+    # Schedule.escalate_every: the weight grows at each multiple without a plan once the guide
+    # is built, and each run starts again at the weight it was given
+    every, factor = 24, 1.5  # multiples before the guide (at guide_after) do nothing
+    schedule = dataclasses.replace(SCHEDULE, escalate_every=every, escalate_factor=factor, deadline_every=1)
+    s = astar_of(random_floor("any", 5), cls=Recorded, weight=2.0, analytic_every=1, schedule=schedule)
+    seen = []
+    s.progress = lambda n: seen.append((n, s.boost, s.goal_parent is None))
+    plan, outcome, _ = plan_of(s)
+    assert outcome == "found" and s.guide.field is not None
+    searching = [(n, b) for n, b, none_yet in seen if none_yet]
+    assert any(b > 1.0 for _, b in searching), "never escalated: the test tests nothing"
+    for n, b in searching:  # reported before the expansion it counts: the multiples passed
+        assert b == factor ** max(0, n // every - SCHEDULE.guide_after // every)
+    assert [b for _, b, _ in seen] == sorted(b for _, b, _ in seen)
+    boosted = s.h(1.0, 0.5, 3)
+    boost, s.boost = s.boost, 1.0
+    assert boosted == pytest.approx(boost * s.h(1.0, 0.5, 3), rel=1e-15)
+    s.boost = boost
+    expanded = expanded_states(s)
+    assert plan.expanded == len(expanded) == len(set(expanded))
+    assert not dearer_reparents(s)
+    s.run(1, math.inf)
+    assert s.boost == 1.0
+
+
 def test_primitive_costs_are_exact_longd():
     L, steer = 1.0, 45 * DEG
     for r in (0.125, 0.0625):

@@ -186,6 +186,8 @@ def test_the_default_schedule_is_the_one_every_plan_was_made_with():
         "enclosed_expansions": 192,
         "guide_after": 64,
         "guided_weight": 1.2,
+        "escalate_every": 20_000,  # issue 25: above what any planned 30 x 20 m kind floor needs
+        "escalate_factor": 1.3,
         "guide_window": (4.0, 4.0, 0.1),  # issue 25: only where the whole grid's guide is too large
         "deadline_every": 64,
         "grid_margin": (4.0, 4.0),
@@ -207,6 +209,8 @@ def test_the_default_schedule_is_the_one_every_plan_was_made_with():
         ("approach_tries", -1),
         ("enclosure_limit", float("nan")),
         ("guided_weight", 0.9),
+        ("escalate_factor", 0.99),
+        ("escalate_every", 0),
         ("steer_slack", 0.0),
         ("improve_gap", -1.0),
         ("grid_margin", (4.0,)),

@@ -95,6 +95,28 @@ class Schedule:
         planned the same 89 floors, 44 plans longer and 22 shorter (mean +0.57 %, largest
         +24.6 %), 160 instead of 170 s. (1.6 and 2.0 for every guide, on the first 50 floors of
         each 30 x 20 m kind: no faster median, longer worst plans, rooms 1.365 -> 1.462.)
+    escalate_every : int
+        Expansions without a plan, once the guide is built, after which the weight on ``h'``
+        is multiplied by :attr:`escalate_factor` and the open list re-ranked (again at each
+        multiple; a forward robot only, as the guide). Where the guide's estimate times the
+        weight is about the fine lattice's cost-to-go, ``g + h'`` is about the same over a
+        wide band of states and the search floods it (issue 25, large-071: the estimate at
+        0.84 of the found chain's cost-to-go along it, 239 k states generated). Set above the
+        most expansions any planned 30 x 20 m floor of :mod:`segplan.studies.floor_kinds`
+        needed (rooms-055, 14 625, ``benchmarks/results/expansions_needed/``), so no plan
+        found there within it changes; chapters 9 and 11 stop at 1000.
+    escalate_factor : float
+        The factor of :attr:`escalate_every` (1: the weight stays). Measured (issue 25,
+        2026-12-07, this project's 2-core machine, two runs at a time, the default limits,
+        ``time_limit`` 10 s) on the "large" sites of :mod:`segplan.studies.floor_kinds`
+        against the tree without it: on the first 100, 1.15 planned 90 and 1.3 planned 91
+        instead of 87 (1.3: 022, 044, 071, 098 gained, none lost; of the 43 floors OMPL's BIT*
+        solves, 071 gained), no plan found both ways changed; chosen there, 1.3. On the
+        held-out sites 100-199: 88 instead of 85 (152, 154, 157, 162 gained; 105, planned
+        after 35 744 expansions in 8.1 s, lost at the time limit), of the 84 plans found both
+        ways two changed (124 4.0 % shorter, 170 5.1 % longer), 1.15 planned 87.
+        ``benchmarks/same_plans.py --kinds 10`` (540 floors): one plan changed, any-061 (113 k
+        expansions), 17.561 -> 18.014 m. Not yet stored as a run of its own.
     guide_window : (float, float, float)
         ``(a, b, c)``: where the coarse cost-to-go over the whole grid would exceed
         :data:`segplan.planning.lattice.guide.MAX_STATES` states (floors of more than about
@@ -150,6 +172,8 @@ class Schedule:
     enclosed_expansions: int = 192
     guide_after: int = 64
     guided_weight: float = 1.2
+    escalate_every: int = 20_000
+    escalate_factor: float = 1.3
     guide_window: tuple[float, float, float] = (4.0, 4.0, 0.1)
     deadline_every: int = 64
     grid_margin: tuple[float, float] = (4.0, 4.0)
@@ -159,7 +183,7 @@ class Schedule:
     wide_turn_cells: int = 32
 
     def __post_init__(self):
-        floats = {"steer_slack": 0.0, "guided_weight": 1.0, "improve_gap": 0.0}
+        floats = {"steer_slack": 0.0, "guided_weight": 1.0, "improve_gap": 0.0, "escalate_factor": 1.0}
         for f in fields(self):
             value = getattr(self, f.name)
             if f.name in ("grid_margin", "guide_window"):
@@ -170,7 +194,8 @@ class Schedule:
                 for v in value:
                     check_option(v, f.name, 0.0, lo_ok=True)
             elif f.name in floats:
-                check_option(value, f.name, floats[f.name], lo_ok=f.name == "guided_weight")
+                at_least = f.name in ("guided_weight", "escalate_factor")
+                check_option(value, f.name, floats[f.name], lo_ok=at_least)
             else:
                 check_option(value, f.name, 0 if f.name == "approach_tries" else 1, integer=True, lo_ok=True)
                 if not isinstance(value, int):

@@ -30,7 +30,9 @@ steering limit):
   region cannot be reached at all is dropped). After :attr:`Schedule.guide_after` expansions
   without a plan, the coarse lattice's cost-to-go joins them
   (:class:`segplan.planning.lattice.guide.Guide`) with the smaller weight
-  :attr:`Schedule.guided_weight`.
+  :attr:`Schedule.guided_weight`; at each :attr:`Schedule.escalate_every` expansions
+  without a plan after that, the weight grows by :attr:`Schedule.escalate_factor` (the open
+  list re-ranked; :attr:`LatticeAStar.boost`).
 * **Reverse** (a robot that may reverse, issue 26; :mod:`segplan.planning.lattice.reverse`):
   every state also has the reverse links of its heading, a state's heading index says its
   last direction (``h + NH`` after a reverse link), edges cost ``reverse_factor`` times
@@ -147,6 +149,10 @@ class LatticeAStar:
         self.q = int(round(r / grid.cell))  # grid cells per lattice cell (exact by construction)
         self.start, self.goal = scenario.start, scenario.goal
         self.weight, self.every, self.goal_radius = weight, analytic_every, goal_radius
+        #: a forward search's factor on ``weight``, 1 at each :meth:`run`'s start, times
+        #: ``schedule.escalate_factor`` at each ``escalate_every`` expansions without a plan
+        #: once the guide is built (:class:`segplan.planning.schedule.Schedule`)
+        self.boost = 1.0
         self.banned, self.schedule = banned, schedule
         self.progress = progress  # called with the expansions at every look at the clock
         ps = primitive_set(robot.L, robot.max_steer, r)
@@ -230,7 +236,7 @@ class LatticeAStar:
         if self.reverse:
             return self.weight * self.bound_of(x, y, hi % NH, hi >= NH, {})
         b = max(dubins_length_scalar(x, y, _ANGLES[hi], gx, gy, gth, self.R), self.field.lower(x, y))
-        return self.weight * self.guide.raise_bound(x, y, hi, b)
+        return self.weight * self.boost * self.guide.raise_bound(x, y, hi, b)
 
     def bound_of(self, x: float, y: float, hi: int, back: bool, rs_known: dict) -> float:
         """A robot that may reverse: a lower bound of the cost to the goal from ``(x, y)``,
@@ -336,6 +342,7 @@ class LatticeAStar:
         self.goal_directions: tuple = ()
         self.approach.reset()
         self.guide.field = None
+        self.boost = 1.0
         self.edges.reset()
         self.heap = [(self.h(0.0, 0.0, 0), 0, start)]
         counter = 1
@@ -389,6 +396,9 @@ class LatticeAStar:
                 self.try_goal(key, P, g)
             if expanded == sch.guide_after and self.goal_parent is None and not self.reverse:
                 self.rerank(h_known, closed)
+            elif expanded % sch.escalate_every == 0 and self.goal_parent is None and self.guide.field:
+                self.boost *= sch.escalate_factor  # a flood: more weight
+                self.reweigh(h_known, closed)
             if (
                 self.goal_parent is None
                 and stop_at == math.inf
@@ -452,12 +462,15 @@ class LatticeAStar:
 
     def rerank(self, h_known: dict, closed: set) -> None:
         """Build the guide (:meth:`Guide.build`) and, if built, lower the weight to
-        :attr:`Schedule.guided_weight` and re-rank the open list by the new ``h'`` (computed
-        anew, once per state in ``h_known``; the entries of expanded states, in ``closed``, are
-        dropped)."""
-        if not self.guide.build():
-            return
-        self.weight = min(self.weight, self.schedule.guided_weight)  # a closer estimate needs less weight
+        :attr:`Schedule.guided_weight` (:meth:`reweigh`)."""
+        if self.guide.build():
+            self.weight = min(self.weight, self.schedule.guided_weight)  # a closer estimate needs less weight
+            self.reweigh(h_known, closed)
+
+    def reweigh(self, h_known: dict, closed: set) -> None:
+        """Re-rank the open list by ``h'`` computed anew (once per state in ``h_known``; the
+        entries of expanded states, in ``closed``, are dropped): after the guide is built
+        (:meth:`rerank`), and when :attr:`boost` grows."""
         h_known.clear()
         heap = []
         for f, n, key in self.heap:
