@@ -104,7 +104,8 @@ class Schedule:
         0.84 of the found chain's cost-to-go along it, 239 k states generated). Set above the
         most expansions any planned 30 x 20 m floor of :mod:`segplan.studies.floor_kinds`
         needed (rooms-055, 14 625, ``benchmarks/results/expansions_needed/``), so no plan
-        found there within it changes; chapters 9 and 11 stop at 1000.
+        found there within it changes; chapters 9 and 11 stop far below it
+        (:data:`segplan.studies.robustness.MAX_EXPANSIONS`).
     escalate_factor : float
         The factor of :attr:`escalate_every` (1: the weight stays). Measured (issue 25,
         2026-12-07, this project's 2-core machine, two runs at a time, the default limits,
@@ -183,7 +184,9 @@ class Schedule:
     wide_turn_cells: int = 32
 
     def __post_init__(self):
-        floats = {"steer_slack": 0.0, "guided_weight": 1.0, "improve_gap": 0.0, "escalate_factor": 1.0}
+        # float fields: (the bound, whether it is allowed)
+        floats = {"steer_slack": (0.0, False), "guided_weight": (1.0, True), "improve_gap": (0.0, False)}
+        floats["escalate_factor"] = (1.0, True)
         for f in fields(self):
             value = getattr(self, f.name)
             if f.name in ("grid_margin", "guide_window"):
@@ -194,8 +197,8 @@ class Schedule:
                 for v in value:
                     check_option(v, f.name, 0.0, lo_ok=True)
             elif f.name in floats:
-                at_least = f.name in ("guided_weight", "escalate_factor")
-                check_option(value, f.name, floats[f.name], lo_ok=at_least)
+                lo, lo_ok = floats[f.name]
+                check_option(value, f.name, lo, lo_ok=lo_ok)
             else:
                 check_option(value, f.name, 0 if f.name == "approach_tries" else 1, integer=True, lo_ok=True)
                 if not isinstance(value, int):

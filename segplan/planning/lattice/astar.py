@@ -396,9 +396,10 @@ class LatticeAStar:
                 self.try_goal(key, P, g)
             if expanded == sch.guide_after and self.goal_parent is None and not self.reverse:
                 self.rerank(h_known, closed)
-            elif expanded % sch.escalate_every == 0 and self.goal_parent is None and self.guide.field:
-                self.boost *= sch.escalate_factor  # a flood: more weight
-                self.reweigh(h_known, closed)
+            elif expanded % sch.escalate_every == 0 and self.goal_parent is None:
+                if self.guide.field is not None:  # a flood despite the guide: more weight
+                    self.boost *= sch.escalate_factor
+                    self.reweigh(h_known, closed)
             if (
                 self.goal_parent is None
                 and stop_at == math.inf
